@@ -1,0 +1,221 @@
+/*
+ * pronk plugin ABI (C, stable across compilers and C++ standard libraries).
+ *
+ * A plugin is a shared library exporting exactly one entry point,
+ * `pronk_plugin_query`. The host passes the ABI version it speaks; the plugin
+ * rejects a different major version and answers with the highest minor it
+ * supports that is not above the host's (Vulkan-style negotiation). It fills a
+ * manifest naming its factories. Factories come in two kinds:
+ *   - controller:  state -> joint torques, one call per control tick;
+ *   - environment: an RL task around a controller (observation, one action per
+ *                  episode, reward at the end).
+ *
+ * Rules that keep the ABI stable:
+ *   - every struct that crosses the boundary starts with `uint32_t struct_size`
+ *     set by whoever allocates it; fields are only ever appended. A reader uses
+ *     the fields that fit in min(struct_size, sizeof(what it knows)) and treats
+ *     the rest as zero / NULL;
+ *   - no C++ types and no exceptions cross the boundary: functions return a
+ *     pronk_status and write a message into a caller-owned buffer;
+ *   - strings are UTF-8, NUL-terminated, owned by whoever allocated them and
+ *     valid for the lifetime stated on each field.
+ *
+ * Frames and units: world frame is Z-up, gravity along -z; SI units (m, s, kg,
+ * rad, N, N m). Quaternions are (w, x, y, z). Joint vectors are in the
+ * controller order: legs in the order of the scenario's foot list, each leg's
+ * actuated joints from the trunk outwards (hip, thigh, calf for a quadruped).
+ *
+ * Version history:
+ *   1.0  first version.
+ */
+#ifndef PRONK_PLUGIN_ABI_H
+#define PRONK_PLUGIN_ABI_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PRONK_ABI_MAJOR 1u
+#define PRONK_ABI_MINOR 0u
+#define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
+#define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
+#define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
+
+/* Name of the single exported entry point, for dlsym. */
+#define PRONK_PLUGIN_ENTRY_NAME "pronk_plugin_query"
+
+#if defined(__GNUC__)
+#define PRONK_PLUGIN_EXPORT __attribute__((visibility("default")))
+#else
+#define PRONK_PLUGIN_EXPORT
+#endif
+
+typedef enum pronk_status {
+  PRONK_OK = 0,
+  PRONK_ERROR_INVALID_ARGUMENT = 1, /* a parameter or input is out of its domain */
+  PRONK_ERROR_VERSION = 2,          /* ABI major mismatch */
+  PRONK_ERROR_FAILED = 3,           /* the call could not do its work; see message */
+  PRONK_ERROR_UNSUPPORTED = 4       /* the callee does not offer this operation */
+} pronk_status;
+
+typedef enum pronk_factory_kind {
+  PRONK_FACTORY_CONTROLLER = 1,
+  PRONK_FACTORY_ENVIRONMENT = 2
+} pronk_factory_kind;
+
+typedef enum pronk_param_type {
+  PRONK_PARAM_REAL = 1,   /* one number; checked against [min_value, max_value] */
+  PRONK_PARAM_INT = 2,    /* one integer; checked against [min_value, max_value] */
+  PRONK_PARAM_STRING = 3, /* free text */
+  PRONK_PARAM_VECTOR = 4  /* whitespace-separated numbers; `vector_size` of them (0: any) */
+} pronk_param_type;
+
+/* One declared parameter of a factory: the host checks scenario files against it. */
+typedef struct pronk_param_decl {
+  uint32_t struct_size;
+  const char* name;          /* [a-z0-9_]+ */
+  uint32_t type;             /* pronk_param_type */
+  uint32_t required;         /* 1: the scenario must set it */
+  double min_value;          /* REAL / INT / each VECTOR element; ignored if min > max */
+  double max_value;
+  uint32_t vector_size;      /* VECTOR only */
+  const char* default_value; /* text form; NULL when required */
+  const char* unit;          /* "m", "N m/rad", "" ... */
+  const char* description;   /* one line */
+} pronk_param_decl;
+
+/* A parameter value as written in the scenario (already checked by the host). */
+typedef struct pronk_param_value {
+  const char* name;
+  const char* value;
+} pronk_param_value;
+
+/* The state handed to a controller each tick (host-owned, valid during the call). */
+typedef struct pronk_robot_state {
+  uint32_t struct_size;
+  double time;              /* s since the episode start */
+  int32_t joint_count;
+  const double* q;          /* joint_count, rad (m for prismatic) */
+  const double* qd;         /* joint_count */
+  double base_position[3];  /* trunk frame origin, world */
+  double base_quaternion[4];/* trunk orientation, world, (w, x, y, z) */
+  double base_linear_velocity[3];  /* world */
+  double base_angular_velocity[3]; /* world */
+  double com_position[3];   /* whole-body centre of mass, world */
+  double com_velocity[3];
+  int32_t foot_count;
+  const double* foot_position; /* foot_count x 3, foot sphere centres, world */
+  const double* foot_force;    /* foot_count x 3, contact force on each foot, world, N */
+  const uint8_t* foot_in_contact; /* foot_count flags */
+} pronk_robot_state;
+
+/*
+ * Services the host offers a plugin instance: kinematics computed by the host's
+ * multibody model. Valid from create() until destroy(). `host` is opaque and
+ * must be passed back unchanged. Functions that take a foot index return
+ * PRONK_ERROR_INVALID_ARGUMENT when it is out of range.
+ */
+typedef struct pronk_host_api {
+  uint32_t struct_size;
+  void* host;
+  int32_t (*joint_count)(void* host);
+  int32_t (*foot_count)(void* host);
+  /* Name of controller joint i (host-owned, valid while the instance lives), NULL if out of range. */
+  const char* (*joint_name)(void* host, int32_t joint);
+  /* Lower/upper position limit, velocity limit (rad/s) and effort limit (N m) of joint i. */
+  pronk_status (*joint_limits)(void* host, int32_t joint, double* lower, double* upper,
+                               double* velocity, double* effort);
+  double (*total_mass)(void* host);                 /* kg */
+  void (*gravity)(void* host, double gravity_world[3]); /* m/s^2 */
+  /* Foot sphere radius, m. */
+  double (*foot_radius)(void* host, int32_t foot);
+  /* Kinematics at the state of the current tick. */
+  pronk_status (*foot_position_world)(void* host, int32_t foot, double position_world[3]);
+  /* 3 x (6 + joint_count), row-major: d(foot velocity, world) / d(u), u = [base angular
+     velocity (world), base linear velocity (world), joint velocities]. */
+  pronk_status (*foot_jacobian_world)(void* host, int32_t foot, double* jacobian);
+  /* Foot position in the trunk frame for given joint positions (all joint_count of them):
+     forward kinematics independent of the current state. */
+  pronk_status (*foot_position_base)(void* host, int32_t foot, const double* q,
+                                     double position_base[3]);
+  /* 3 x 3 row-major: d(foot position in trunk frame) / d(q of that foot's leg joints), for
+     legs with exactly three actuated joints; PRONK_ERROR_UNSUPPORTED otherwise. */
+  pronk_status (*leg_jacobian_base)(void* host, int32_t foot, const double* q, double* jacobian);
+  /* Record a named event (phase change, lift-off ...) in the episode trace at time t. */
+  void (*emit_event)(void* host, double time, const char* name, const char* detail);
+  /* Log a line (level 0 info, 1 warning, 2 error). */
+  void (*log)(void* host, int32_t level, const char* message);
+} pronk_host_api;
+
+/* Operations on a controller instance. */
+typedef struct pronk_controller_ops {
+  uint32_t struct_size;
+  /* Called once before the first tick of an episode (optional, may be NULL). */
+  pronk_status (*reset)(void* instance, const pronk_robot_state* state, char* error, size_t error_size);
+  /* One control tick: write joint_count torques (N m). */
+  pronk_status (*compute)(void* instance, const pronk_robot_state* state, double* torque,
+                          char* error, size_t error_size);
+  void (*destroy)(void* instance);
+} pronk_controller_ops;
+
+/* Operations on an environment instance. One action drives a whole episode. */
+typedef struct pronk_environment_ops {
+  uint32_t struct_size;
+  /* Start an episode for a task vector (for the jump: target x, y, z, yaw, roll, pitch
+     relative to the start). Writes observation_size numbers. */
+  pronk_status (*reset)(void* instance, const double* task, int32_t task_size, uint64_t seed,
+                        const pronk_robot_state* state, double* observation,
+                        char* error, size_t error_size);
+  /* Apply the episode's action (action_size numbers). */
+  pronk_status (*act)(void* instance, const double* action, char* error, size_t error_size);
+  /* One control tick; sets *done = 1 to end the episode early. */
+  pronk_status (*step)(void* instance, const pronk_robot_state* state, double* torque, int32_t* done,
+                       char* error, size_t error_size);
+  /* After the last tick: the episode's reward. */
+  pronk_status (*finish)(void* instance, const pronk_robot_state* state, double* reward,
+                         char* error, size_t error_size);
+  void (*destroy)(void* instance);
+} pronk_environment_ops;
+
+/* A named factory. Sizes are declarations the host checks before running:
+   0 means "any" (decided by the robot). */
+typedef struct pronk_factory {
+  uint32_t struct_size;
+  uint32_t kind;             /* pronk_factory_kind */
+  const char* name;          /* unique in the plugin, [a-z0-9_]+ */
+  const char* description;
+  int32_t param_count;
+  const pronk_param_decl* params; /* param_count entries, each with its own struct_size */
+  int32_t joint_count;       /* actuated joints the factory works with; 0: any */
+  int32_t observation_size;  /* environments */
+  int32_t action_size;       /* environments */
+  double control_period;     /* s; 0: any */
+  /* Create an instance; params hold every declared parameter (defaults filled in). */
+  pronk_status (*create)(const pronk_host_api* host, const pronk_param_value* params,
+                         int32_t param_count, void** instance, char* error, size_t error_size);
+  const pronk_controller_ops* controller;   /* kind == CONTROLLER */
+  const pronk_environment_ops* environment; /* kind == ENVIRONMENT */
+} pronk_factory;
+
+/* Filled by the plugin; struct_size set by the host. Pointers stay valid until dlclose. */
+typedef struct pronk_plugin_manifest {
+  uint32_t struct_size;
+  uint32_t abi_version;      /* negotiated version, written by the plugin */
+  const char* plugin_name;
+  const char* plugin_version;
+  int32_t factory_count;
+  const pronk_factory* const* factories;
+} pronk_plugin_manifest;
+
+/* The entry point. Returns PRONK_ERROR_VERSION (with a message) for a different major. */
+typedef pronk_status (*pronk_plugin_query_fn)(uint32_t host_abi_version, pronk_plugin_manifest* manifest,
+                                              char* error, size_t error_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PRONK_PLUGIN_ABI_H */

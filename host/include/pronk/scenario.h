@@ -1,0 +1,165 @@
+// Scenario files: what a user writes to say which robot jumps where, on what
+// terrain, under which simulation settings. This header is the in-memory form;
+// scenario_file.cpp reads it from XML (format: docs/scenario-format.md).
+#pragma once
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pronk/error.h"
+
+namespace pronk {
+
+using Vec3 = std::array<double, 3>;
+
+// A parameter as written in the file, for a plugin factory to check.
+struct ParamSetting {
+  std::string name;
+  std::string value;
+  SourceLocation where;
+};
+
+struct ControllerSpec {
+  std::string factory;              // e.g. "guided_jump", or the built-in "stand"
+  std::string plugin;               // optional library name or path ("" = search all)
+  std::vector<ParamSetting> params;
+  SourceLocation where;
+};
+
+// Gains and limits for the joints; per-joint overrides by exact joint name.
+struct JointSettings {
+  double kp = 100;        // N m/rad
+  double kd = 2;          // N m s/rad
+  double armature = 0;    // kg m^2, reflected rotor inertia (see docs/physics.md)
+  double damping = -1;    // N m s/rad viscous joint damping; <0: keep the URDF's
+  double effort_scale = 1; // multiplies the URDF effort limits
+  struct Override {
+    std::string joint;
+    std::optional<double> kp, kd, effort, velocity;
+    SourceLocation where;
+  };
+  std::vector<Override> overrides;
+};
+
+struct PlatformSpec {
+  std::string name;
+  std::string urdf;                          // resolved absolute path
+  SourceLocation urdf_where;
+  std::vector<std::string> package_paths;    // resolved absolute directories
+  std::vector<std::string> feet;             // foot links, in controller leg order
+  SourceLocation feet_where;
+  // Initial pose. The joint configuration is per leg (repeated for every leg,
+  // in the leg's joint order from the trunk outwards), or per joint by name.
+  std::vector<double> stance;                // e.g. {0, 0.75, -1.5}
+  std::map<std::string, double> joint_positions;
+  Vec3 base_position{0, 0, 0};               // m; z ignored when on_ground
+  bool on_ground = true;                     // set base z so the feet touch the terrain
+  double base_yaw = 0;                       // rad
+  double trunk_mass_offset = 0;              // kg added to the root body (sweeps)
+  JointSettings joints;
+  ControllerSpec controller;
+  SourceLocation where;
+};
+
+// Foot contact law. "stiction": Hunt-Crossley normal force plus an
+// elasto-plastic bristle friction (docs/physics.md).
+struct ContactSpec {
+  std::string model = "stiction";
+  double stiffness = 5e4;               // N/m, normal
+  double dissipation = 0.75;            // s/m, Hunt-Crossley c
+  double mu_static = 0.8;
+  double mu_dynamic = 0.8;
+  double tangential_stiffness = 2e4;    // N/m, bristle spring
+  double tangential_damping = 252;      // N s/m, bristle damper
+};
+
+struct SimSpec {
+  double control_rate = 1000;                // Hz
+  std::string integrator = "semi_explicit_euler2";  // or semi_explicit_euler, runge_kutta_merson ...
+  double step = 2e-4;                        // s, fixed-step integrators
+  double accuracy = 1e-3;                    // error-controlled integrators
+  double duration = 1.5;                     // s per episode
+  Vec3 gravity{0, 0, -9.81};
+  ContactSpec contact;
+  SourceLocation where;
+};
+
+// A static box of terrain. Size is full extents (not half sizes), position is
+// the box centre in the world, yaw about z.
+struct TerrainBox {
+  std::string name;
+  Vec3 size{1, 1, 0.1};
+  Vec3 position{0, 0, 0};
+  double yaw = 0;
+  std::optional<double> mu;   // overrides the contact friction on this box
+  SourceLocation where;
+};
+
+// A target pose relative to the start (x forward, y left, z up, of the
+// robot's initial heading), angles in rad.
+struct TargetSpec {
+  std::string name;
+  double x = 0, y = 0, z = 0, yaw = 0, roll = 0, pitch = 0;
+  SourceLocation where;
+};
+
+// Sweeps expand into more episodes: a grid, seeded random samples in a region,
+// or variations of a parameter.
+struct SweepAxis {
+  std::string variable;          // target.x, target.yaw, platform.trunk_mass_offset, joints.damping ...
+  std::vector<double> values;    // grid / vary: explicit values
+  double min = 0, max = 0;       // random: uniform range
+  SourceLocation where;
+};
+
+struct SweepSpec {
+  enum class Kind { Grid, Random, Vary } kind = Kind::Grid;
+  std::string name;
+  std::vector<SweepAxis> axes;
+  int count = 0;                 // random
+  unsigned long seed = 0;        // random
+  SourceLocation where;
+};
+
+struct CameraSpec {
+  std::string mode = "side";     // side | follow | top | fixed
+  Vec3 position{0, -2, 0.6};     // fixed
+  Vec3 look_at{0.3, 0, 0.2};     // fixed
+  double fovy_deg = 45;
+  SourceLocation where;
+};
+
+struct RenderSpec {
+  int width = 1280, height = 720;
+  double fps = 30;
+  double speed = 1;              // playback speed, 0.25 = slow motion
+  std::string output;            // resolved path ("" = decided by the command)
+  CameraSpec camera;
+  SourceLocation where;
+};
+
+struct Scenario {
+  std::string file;              // absolute path of the top-level file
+  std::string name;
+  int version = 1;
+  PlatformSpec platform;
+  SimSpec sim;
+  std::vector<TerrainBox> terrain;
+  double ground_height = 0;      // m, the ground plane z
+  bool ground = true;            // false: no ground plane (only boxes)
+  std::vector<TargetSpec> targets;
+  std::vector<SweepSpec> sweeps;
+  std::optional<RenderSpec> render;
+};
+
+// The only major version of the format this build reads.
+constexpr int kScenarioFormatVersion = 1;
+
+// Reads and validates a scenario file (and the files it includes). Throws
+// InputError("file:line: message") on the first error.
+Scenario loadScenario(const std::string& path);
+
+}  // namespace pronk

@@ -1,0 +1,52 @@
+// What an episode leaves behind: a sample per control tick and named events.
+// Reports, metrics and videos are computed from traces, never from the live
+// simulation.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace pronk {
+
+struct TraceSample {
+  double time = 0;
+  Eigen::Vector3d base_position = Eigen::Vector3d::Zero();
+  Eigen::Vector4d base_quaternion{1, 0, 0, 0};  // w, x, y, z
+  Eigen::Vector3d base_linear_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+  Eigen::VectorXd q, qd, torque;
+  std::vector<Eigen::Vector3d> foot_position, foot_force;
+  std::vector<uint8_t> foot_in_contact;
+  std::vector<Eigen::Isometry3d> body_poses;  // every body, for rendering (optional)
+};
+
+struct TraceEvent {
+  double time = 0;
+  std::string name;    // "lift_off", "touchdown", "phase:flight", "failure" ...
+  std::string detail;
+};
+
+struct Trace {
+  std::vector<std::string> joint_names;
+  std::vector<std::string> foot_links;
+  std::vector<TraceSample> samples;
+  std::vector<TraceEvent> events;
+
+  void addEvent(double time, std::string name, std::string detail = {}) {
+    events.push_back({time, std::move(name), std::move(detail)});
+  }
+  // First event with this name, or nullptr.
+  const TraceEvent* findEvent(const std::string& name) const {
+    for (const TraceEvent& e : events)
+      if (e.name == name) return &e;
+    return nullptr;
+  }
+};
+
+// Writes the trace as CSV (one row per sample) to `path`. Throws Error when the
+// file cannot be written.
+void writeTraceCsv(const Trace& trace, const std::string& path);
+
+}  // namespace pronk

@@ -1,0 +1,121 @@
+// The simulated world: a robot built from its URDF, static terrain, the foot
+// contact law and gravity, stepped by a fixed control period with joint
+// torques held constant over each period (zero-order hold, as on a robot).
+// A World knows nothing about jumping; controllers see it through RobotState
+// and the kinematics queries below.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pronk/robot_description.h"
+#include "pronk/scenario.h"
+#include "pronk/terrain.h"
+
+namespace pronk {
+
+// Everything a controller may read at a control tick (world frame, SI units).
+struct RobotState {
+  double time = 0;
+  Eigen::VectorXd q, qd;                     // controller joint order
+  Eigen::Vector3d base_position = Eigen::Vector3d::Zero();
+  Eigen::Vector4d base_quaternion{1, 0, 0, 0};  // w, x, y, z
+  Eigen::Vector3d base_linear_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d base_angular_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_velocity = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> foot_position;  // sphere centres
+  std::vector<Eigen::Vector3d> foot_force;     // force of the terrain on each foot, N
+  std::vector<uint8_t> foot_in_contact;
+};
+
+// Why an episode stopped early.
+struct Failure {
+  double time = 0;
+  std::string reason;   // "non_foot_contact", "diverged"
+  std::string detail;   // e.g. "body 'FR_calf' touched the terrain"
+};
+
+// Measured integration work, for benchmarks.
+struct StepStatistics {
+  long integrator_steps = 0;
+  long control_ticks = 0;
+};
+
+class World {
+ public:
+  // Builds the model. Throws InputError for a URDF or foot link problem.
+  World(const Scenario& scenario);
+  World(const RobotDescription& robot, const PlatformSpec& platform, const SimSpec& sim,
+        const Terrain& terrain);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // Back to the scenario's initial pose at rest, time 0.
+  void reset();
+  // Sets the initial pose explicitly: base position and yaw, joint positions.
+  void resetTo(const Eigen::Vector3d& base_position, double base_yaw, const Eigen::VectorXd& q,
+               bool place_on_ground);
+
+  // Gives the base a velocity (world frame) at the current time, joints keep theirs.
+  void setBaseVelocity(const Eigen::Vector3d& linear, const Eigen::Vector3d& angular);
+
+  // Advances one control period with `torque` (controller order, N m) held
+  // constant. Torques are clamped to the joint effort limits. Returns false
+  // (and sets failure()) when the robot touched the terrain with a non-foot
+  // body or the simulation diverged; the world then stays where it was.
+  bool step(const Eigen::VectorXd& torque);
+
+  const RobotState& state() const { return state_; }
+  const std::optional<Failure>& failure() const { return failure_; }
+  double time() const { return state_.time; }
+  double controlPeriod() const;
+  const StepStatistics& statistics() const { return stats_; }
+
+  // --- the robot, in controller order ---
+  int jointCount() const;
+  int footCount() const;
+  const std::vector<std::string>& jointNames() const;
+  const std::vector<std::string>& footLinks() const;
+  // Joint indices (controller order) of each foot's leg, trunk outwards.
+  const std::vector<std::vector<int>>& legJoints() const;
+  const Joint& joint(int i) const;            // URDF data of controller joint i
+  double effortLimit(int i) const;            // after the scenario's scaling and overrides
+  double footRadius(int foot) const;
+  double totalMass() const;
+  Eigen::Vector3d gravity() const;
+  const RobotDescription& robot() const;
+  const Terrain& terrain() const;
+  const PlatformSpec& platform() const;
+  const SimSpec& sim() const;
+  // The initial joint configuration from the scenario (controller order).
+  Eigen::VectorXd initialJointPositions() const;
+
+  // --- kinematics at the current state ---
+  // 3 x (6 + joints): d(foot velocity, world)/d(u), u = [base angular velocity
+  // (world), base linear velocity (world), joint velocities].
+  Eigen::MatrixXd footJacobianWorld(int foot) const;
+  // Forward kinematics in the trunk frame for joint positions q (any state).
+  Eigen::Vector3d footPositionBase(int foot, const Eigen::VectorXd& q) const;
+  // d(foot position in trunk frame)/d(q of that leg's joints), 3 x leg size.
+  Eigen::MatrixXd legJacobianBase(int foot, const Eigen::VectorXd& q) const;
+  // World poses of every description body (for traces and rendering).
+  std::vector<Eigen::Isometry3d> bodyPoses() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  RobotState state_;
+  std::optional<Failure> failure_;
+  StepStatistics stats_;
+  void readState();
+};
+
+// Integrator names a scenario may use, in one place.
+const std::vector<std::string>& integratorNames();
+
+}  // namespace pronk

@@ -1,0 +1,63 @@
+#include "pronk/episode.h"
+
+#include <chrono>
+
+namespace pronk {
+namespace {
+
+TraceSample sampleOf(const World& world, const RobotState& s, const Eigen::VectorXd& torque, bool poses) {
+  TraceSample out;
+  out.time = s.time;
+  out.base_position = s.base_position;
+  out.base_quaternion = s.base_quaternion;
+  out.base_linear_velocity = s.base_linear_velocity;
+  out.com_position = s.com_position;
+  out.com_velocity = s.com_velocity;
+  out.q = s.q;
+  out.qd = s.qd;
+  out.torque = torque;
+  out.foot_position = s.foot_position;
+  out.foot_force = s.foot_force;
+  out.foot_in_contact = s.foot_in_contact;
+  if (poses) out.body_poses = world.bodyPoses();
+  return out;
+}
+
+}  // namespace
+
+EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOptions& options) {
+  EpisodeResult result;
+  Trace& trace = result.trace;
+  trace.joint_names = world.jointNames();
+  trace.foot_links = world.footLinks();
+  const auto start = std::chrono::steady_clock::now();
+  const long ticks = std::lround(options.duration / world.controlPeriod());
+  bool was_airborne = false;
+  try {
+    controller.reset(world.state());
+    for (long k = 0; k < ticks; ++k) {
+      const RobotState& s = world.state();
+      const Eigen::VectorXd torque = controller.compute(s);
+      trace.samples.push_back(sampleOf(world, s, torque, options.record_body_poses));
+      if (!world.step(torque)) break;
+      // Contact changes of the whole robot: all feet off, then any foot back on.
+      bool any_contact = false;
+      for (uint8_t c : world.state().foot_in_contact) any_contact = any_contact || c;
+      if (!any_contact && !was_airborne) trace.addEvent(world.time(), "lift_off");
+      if (any_contact && was_airborne) trace.addEvent(world.time(), "touchdown");
+      was_airborne = !any_contact;
+    }
+  } catch (const Error& e) {
+    result.failure = Failure{world.time(), "controller", e.what()};
+  }
+  if (!result.failure && world.failure()) result.failure = world.failure();
+  if (result.failure) trace.addEvent(result.failure->time, "failure", result.failure->reason + ": " + result.failure->detail);
+  // The final state, so the trace ends where the robot did.
+  trace.samples.push_back(sampleOf(world, world.state(), Eigen::VectorXd::Zero(world.jointCount()),
+                                   options.record_body_poses));
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.statistics = world.statistics();
+  return result;
+}
+
+}  // namespace pronk

@@ -1,0 +1,139 @@
+// URDF reading: mass properties against sums over the file, lumping, limits,
+// mesh resolution and error cases.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "go1_fixture.h"
+#include "pronk/robot_description.h"
+
+namespace pronk {
+namespace {
+
+using testing::robotUrdf;
+
+TEST(RobotDescription, Go1MassIsTheSumOfItsLinks) {
+  const RobotDescription robot = loadUrdf(robotUrdf("go1"));
+  // trunk + 4 x (hip, thigh, calf, foot) + 12 rotors, from the vendor figures.
+  const double expected = 5.204 + 4 * (0.591 + 0.92 + 0.135862 + 0.06) + 12 * 0.089;
+  EXPECT_NEAR(robot.totalMass(), expected, 1e-9);
+  // Rotors and feet are lumped: one root and three moving bodies per leg.
+  EXPECT_EQ(robot.bodies.size(), 13u);
+  EXPECT_EQ(robot.joints.size(), 12u);
+  EXPECT_TRUE(robot.warnings.empty());
+}
+
+TEST(RobotDescription, LumpedBodyKeepsCentreOfMassAndInertia) {
+  const RobotDescription robot = loadUrdf(robotUrdf("go1"));
+  // The FL thigh body = FL_thigh (0.92 kg, COM (-0.003342, -0.018054, -0.033451))
+  // + FL_calf_rotor (0.089 kg at (0, -0.03235, 0)), both in the thigh frame.
+  const int b = robot.findBody("FL_thigh");
+  ASSERT_GE(b, 0);
+  const MassProperties& m = robot.bodies[b].mass;
+  EXPECT_NEAR(m.mass, 1.009, 1e-12);
+  const Eigen::Vector3d com = (0.92 * Eigen::Vector3d(-0.003342, -0.018054, -0.033451) +
+                               0.089 * Eigen::Vector3d(0, -0.03235, 0)) / 1.009;
+  EXPECT_NEAR((m.com_body - com).norm(), 0, 1e-12);
+  // Parallel-axis theorem on Ixx: the two central Ixx plus m d^2 (d in y, z).
+  const Eigen::Vector3d d1 = Eigen::Vector3d(-0.003342, -0.018054, -0.033451) - com;
+  const Eigen::Vector3d d2 = Eigen::Vector3d(0, -0.03235, 0) - com;
+  const double ixx = 0.004431760472 + 0.92 * (d1.y() * d1.y() + d1.z() * d1.z()) + 5.9647e-05 +
+                     0.089 * (d2.y() * d2.y() + d2.z() * d2.z());
+  EXPECT_NEAR(m.inertia_com(0, 0), ixx, 1e-12);
+}
+
+TEST(RobotDescription, JointLimitsAndFeetAreKept) {
+  const RobotDescription robot = loadUrdf(robotUrdf("go1"));
+  const Joint& calf = robot.joints[robot.findJoint("RL_calf_joint")];
+  EXPECT_TRUE(calf.has_position_limits);
+  EXPECT_DOUBLE_EQ(calf.lower, -2.818);
+  EXPECT_DOUBLE_EQ(calf.upper, -0.888);
+  EXPECT_DOUBLE_EQ(calf.effort_limit, 35.55);
+  EXPECT_DOUBLE_EQ(calf.velocity_limit, 20.06);
+  const auto foot = robot.locateLink("RL_foot");
+  ASSERT_TRUE(foot);
+  EXPECT_EQ(robot.bodies[foot->first].name, "RL_calf");
+  EXPECT_NEAR(foot->second.translation().z(), -0.213, 1e-12);
+}
+
+TEST(RobotDescription, VisualMeshesResolveRelativeToTheUrdf) {
+  const RobotDescription robot = loadUrdf(robotUrdf("go1"));
+  int meshes = 0;
+  for (const Body& b : robot.bodies)
+    for (const VisualShape& v : b.visuals)
+      if (!v.mesh_uri.empty()) {
+        ASSERT_TRUE(v.mesh_path) << v.mesh_uri;
+        EXPECT_TRUE(std::filesystem::exists(*v.mesh_path));
+        ++meshes;
+      }
+  EXPECT_GT(meshes, 0);
+}
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "pronk_urdf_tests";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+void expectError(const std::string& name, const std::string& xml, const std::string& where,
+                 const std::string& contains) {
+  const std::string path = writeTemp(name, xml);
+  try {
+    loadUrdf(path);
+    FAIL() << "no error for " << name;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(path + where, 0), 0u) << msg;
+    EXPECT_NE(msg.find(contains), std::string::npos) << msg;
+  }
+}
+
+const char* kLink = R"(<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>)";
+
+TEST(RobotDescription, ErrorsNameTheFileAndLine) {
+  try {
+    loadUrdf("/nonexistent/robot.urdf");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/robot.urdf: cannot open"), std::string::npos);
+  }
+  expectError("syntax.urdf", "<robot name='r'>\n<link name='a'>\n</robot>\n", ":2: ", "XML error");
+  expectError("planar.urdf",
+              std::string("<robot name='r'>\n<link name='a'>") + kLink + "</link>\n<link name='b'>" + kLink +
+                  "</link>\n<joint name='j' type='planar'><parent link='a'/><child link='b'/></joint>\n</robot>",
+              ":4: ", "floating or planar");
+  expectError("nolimits.urdf",
+              std::string("<robot name='r'>\n<link name='a'>") + kLink + "</link>\n<link name='b'>" + kLink +
+                  "</link>\n<joint name='j' type='revolute'><parent link='a'/><child link='b'/></joint>\n</robot>",
+              ":4: ", "limits");
+  expectError("massless.urdf",
+              std::string("<robot name='r'>\n<link name='a'>") + kLink +
+                  "</link>\n<link name='b'/>\n<joint name='j' type='continuous'><parent link='a'/><child link='b'/>"
+                  "<axis xyz='0 1 0'/></joint>\n</robot>",
+              ":3: ", "no mass");
+  expectError("badinertia.urdf",
+              "<robot name='r'>\n<link name='a'><inertial><mass value='1'/><inertia ixx='0.01' iyy='0.01' "
+              "izz='0.5' ixy='0' ixz='0' iyz='0'/></inertial></link>\n</robot>",
+              ":2: ", "not physical");
+}
+
+TEST(RobotDescription, MissingVisualMeshIsAWarningWithAPrimitive) {
+  const std::string path = writeTemp(
+      "missing_mesh.urdf",
+      std::string("<robot name='r'>\n<link name='a'>") + kLink +
+          "<visual><geometry><mesh filename='package://nowhere/meshes/trunk.dae'/></geometry></visual>"
+          "<collision><geometry><box size='0.3 0.1 0.1'/></geometry></collision></link>\n</robot>");
+  const RobotDescription robot = loadUrdf(path);
+  ASSERT_EQ(robot.warnings.size(), 1u);
+  EXPECT_NE(robot.warnings[0].find("not found"), std::string::npos);
+  ASSERT_EQ(robot.bodies[0].visuals.size(), 1u);
+  ASSERT_TRUE(robot.bodies[0].visuals[0].primitive);
+  EXPECT_EQ(robot.bodies[0].visuals[0].primitive->type, ShapeType::Box);
+  EXPECT_NEAR(robot.bodies[0].visuals[0].primitive->box_size.x(), 0.3, 1e-12);
+}
+
+}  // namespace
+}  // namespace pronk
