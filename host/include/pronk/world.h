@@ -115,7 +115,4 @@ class World {
   void readState();
 };
 
-// Integrator names a scenario may use, in one place.
-const std::vector<std::string>& integratorNames();
-
 }  // namespace pronk

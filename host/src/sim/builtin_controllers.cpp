@@ -62,7 +62,7 @@ class ScriptedJumpController : public Controller {
 
   ScriptedJumpController(const World& world, Trace* trace)
       : world_(world), trace_(trace), gains_(gainsOf(world)), q_stand_(world.initialJointPositions()) {
-    q_crouch_ = legPose({0, 0.95, -1.9});
+    q_crouch_ = legPose({0, 1.05, -2.1});
     q_push_ = legPose({0, 0.75, -1.5});
     q_tuck_ = legPose({0, 0.9, -1.8});
   }
@@ -148,7 +148,7 @@ class ScriptedJumpController : public Controller {
 
  private:
   static constexpr double kAttitudeKp = 400, kAttitudeKd = 30;  // N m/rad, N m s/rad
-  static constexpr double kStandEnd = 0.2, kCrouchEnd = 0.45, kPushRamp = 0.10, kPushTimeout = 0.75;
+  static constexpr double kStandEnd = 0.2, kCrouchEnd = 0.45, kPushRamp = 0.15, kPushTimeout = 0.75;
 
   Eigen::VectorXd legPose(const std::array<double, 3>& leg_q) const {
     Eigen::VectorXd q = q_stand_;

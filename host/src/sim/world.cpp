@@ -77,7 +77,9 @@ std::unique_ptr<SimTK::Integrator> makeIntegrator(const SimTK::MultibodySystem& 
       throw InputError(sim.where, "unknown integrator '" + name + "'");
     }
     integ->setAccuracy(sim.accuracy);
-    integ->setMaximumStepSize(period);
+    // In flight nothing limits an error-controlled step but this bound; the
+    // first-order methods' flight error grows with it (docs/physics.md).
+    integ->setMaximumStepSize(std::min(period, sim.max_step));
   }
   // Steps must end exactly on control ticks: torques change there.
   integ->setAllowInterpolation(false);
@@ -85,12 +87,6 @@ std::unique_ptr<SimTK::Integrator> makeIntegrator(const SimTK::MultibodySystem& 
 }
 
 }  // namespace
-
-const std::vector<std::string>& integratorNames() {
-  static const std::vector<std::string> names{"semi_explicit_euler", "semi_explicit_euler2", "explicit_euler",
-                                              "runge_kutta_merson", "runge_kutta_3", "verlet"};
-  return names;
-}
 
 struct World::Impl {
   RobotDescription robot;
