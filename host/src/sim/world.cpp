@@ -77,9 +77,7 @@ std::unique_ptr<SimTK::Integrator> makeIntegrator(const SimTK::MultibodySystem& 
       throw InputError(sim.where, "unknown integrator '" + name + "'");
     }
     integ->setAccuracy(sim.accuracy);
-    // In flight nothing limits an error-controlled step but this bound; the
-    // first-order methods' flight error grows with it (docs/physics.md).
-    integ->setMaximumStepSize(std::min(period, sim.max_step));
+    integ->setMaximumStepSize(period);
   }
   // Steps must end exactly on control ticks: torques change there.
   integ->setAllowInterpolation(false);
@@ -102,6 +100,7 @@ struct World::Impl {
   const FootContactForce* contact = nullptr;
   RobotMultibody mb;
   std::unique_ptr<SimTK::Integrator> integ;
+  bool adaptive = false;  // error-controlled integrator
   mutable SimTK::State scratch;  // for kinematics at arbitrary joint positions
 
   // Controller order.
@@ -315,6 +314,7 @@ void World::resetTo(const Eigen::Vector3d& base_position, double base_yaw, const
   w.contact->clearAnchors(state);
   w.torques->clearAllForces(state);
   w.integ = makeIntegrator(w.system, w.sim);
+  w.adaptive = w.sim.integrator != "semi_explicit_euler" && w.sim.integrator != "explicit_euler";
   w.integ->initialize(state);
   failure_.reset();
   stats_ = {};
@@ -351,6 +351,12 @@ bool World::step(const Eigen::VectorXd& torque) {
       mobility[w.u_of[i]] = std::clamp(tau, -w.effort[i], w.effort[i]);
     }
     w.torques->setAllMobilityForces(advanced, mobility);
+    // In flight nothing but this bound limits an error-controlled step, and the
+    // first-order methods' flight error grows with it; in stance the contact
+    // sets the step (docs/physics.md).
+    bool airborne = true;
+    for (uint8_t c : state_.foot_in_contact) airborne = airborne && !c;
+    if (w.adaptive) w.integ->setMaximumStepSize(airborne ? std::min(period, w.sim.flight_max_step) : period);
     w.integ->reinitialize(SimTK::Stage::Dynamics, false);
     const long steps_before = w.integ->getNumStepsTaken();
     while (w.integ->getTime() < t_next - 1e-12) {
