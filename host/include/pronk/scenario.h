@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pronk/error.h"
@@ -55,6 +56,8 @@ struct PlatformSpec {
   // in the leg's joint order from the trunk outwards), or per joint by name.
   std::vector<double> stance;                // e.g. {0, 0.75, -1.5}
   std::map<std::string, double> joint_positions;
+  std::map<std::string, SourceLocation> joint_position_where;  // same keys
+  SourceLocation initial_where;              // the <initial> element (stance, pose)
   Vec3 base_position{0, 0, 0};               // m; z ignored when on_ground
   bool on_ground = true;                     // set base z so the feet touch the terrain
   double base_yaw = 0;                       // rad
@@ -74,6 +77,7 @@ struct ContactSpec {
   double mu_dynamic = 0.8;
   double tangential_stiffness = 2e4;    // N/m, bristle spring
   double tangential_damping = 252;      // N s/m, bristle damper
+  SourceLocation where;                 // the <contact> element (file only if absent)
 };
 
 struct SimSpec {
@@ -81,6 +85,7 @@ struct SimSpec {
   std::string integrator = "semi_explicit_euler2";  // or semi_explicit_euler, runge_kutta_merson ...
   double step = 2e-4;                        // s, fixed-step integrators
   double accuracy = 1e-3;                    // error-controlled integrators
+  double flight_max_step = 5e-4;             // s, longest error-controlled step while no foot touches
   double duration = 1.5;                     // s per episode
   Vec3 gravity{0, 0, -9.81};
   ContactSpec contact;
@@ -154,6 +159,34 @@ struct Scenario {
   std::vector<SweepSpec> sweeps;
   std::optional<RenderSpec> render;
 };
+
+// The names the format accepts, kept here and nowhere else (the scenario reader
+// rejects any other; docs/scenario-format.md explains each).
+inline constexpr std::array<std::string_view, 6> kIntegrators{
+    "semi_explicit_euler", "semi_explicit_euler2", "runge_kutta_merson",
+    "runge_kutta_3",       "explicit_euler",       "verlet"};
+inline constexpr std::array<std::string_view, 1> kContactModels{"stiction"};
+inline constexpr std::array<std::string_view, 4> kCameraModes{"side", "follow", "top", "fixed"};
+
+// A quantity a sweep may vary, with the SI unit its values are stored in
+// ("rad" values are written in the file's angle unit and converted).
+struct SweepVariable {
+  std::string_view name;
+  std::string_view unit;
+};
+inline constexpr std::array<SweepVariable, 11> kSweepVariables{{
+    {"target.x", "m"},
+    {"target.y", "m"},
+    {"target.z", "m"},
+    {"target.yaw", "rad"},
+    {"target.roll", "rad"},
+    {"target.pitch", "rad"},
+    {"platform.trunk_mass_offset", "kg"},
+    {"joints.damping", "N m s/rad"},
+    {"joints.kp", "N m/rad"},
+    {"joints.kd", "N m s/rad"},
+    {"contact.mu_static", ""},
+}};
 
 // The only major version of the format this build reads.
 constexpr int kScenarioFormatVersion = 1;

@@ -1,0 +1,261 @@
+// loadScenario: opens the top-level file, splices <include>d files in place,
+// hands each top-level element to its section reader (sections.h), then runs
+// the checks that span several elements.
+#include <tinyxml2.h>
+
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "element_reader.h"
+#include "pronk/scenario.h"
+#include "sections.h"
+#include "urdf_root_mass.h"
+
+namespace pronk {
+
+namespace {
+
+namespace fs = std::filesystem;
+using scenario_file::AngleUnit;
+using scenario_file::ElementReader;
+using scenario_file::SourceFile;
+using tinyxml2::XMLElement;
+
+constexpr const char* kTopRoot = "scenario";
+constexpr const char* kPartRoot = "scenario_part";
+
+// tinyxml2's error, in words a user can act on.
+std::string describeXmlError(const tinyxml2::XMLDocument& doc) {
+  std::string what;
+  switch (doc.ErrorID()) {
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE: what = "malformed or repeated attribute"; break;
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT: what = "element closed by the wrong end tag, or never closed"; break;
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT: what = "malformed element"; break;
+    case tinyxml2::XML_ERROR_PARSING_TEXT: what = "malformed text (a bare '<' or '&'?)"; break;
+    case tinyxml2::XML_ERROR_PARSING_COMMENT: what = "unterminated comment"; break;
+    case tinyxml2::XML_ERROR_PARSING_CDATA: what = "unterminated CDATA section"; break;
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION: what = "malformed <?xml ...?> declaration"; break;
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: what = "the file holds no element"; break;
+    default: what = doc.ErrorName(); break;
+  }
+  // ErrorStr() ends with ": <detail>", e.g. "XMLElement name=robot".
+  const std::string full = doc.ErrorStr() ? doc.ErrorStr() : "";
+  const size_t line_pos = full.find("Line number=");
+  const size_t colon = line_pos == std::string::npos ? std::string::npos : full.find(": ", line_pos);
+  if (colon != std::string::npos) {
+    std::string detail = full.substr(colon + 2);
+    const std::string element_prefix = "XMLElement name=";
+    if (detail.rfind(element_prefix, 0) == 0) detail = "in <" + detail.substr(element_prefix.size()) + ">";
+    if (!detail.empty()) what += " (" + detail + ")";
+  }
+  return "XML syntax error: " + what;
+}
+
+// "1", "1.0", "1.2": returns the major number, or -1 when malformed.
+int majorVersion(const std::string& v) {
+  size_t i = 0;
+  int major = 0;
+  while (i < v.size() && std::isdigit(static_cast<unsigned char>(v[i])) && major < 100000) {
+    major = major * 10 + (v[i++] - '0');
+  }
+  if (i == 0) return -1;
+  if (i == v.size()) return major;
+  if (v[i] != '.' || i + 1 == v.size()) return -1;
+  for (size_t j = i + 1; j < v.size(); ++j) {
+    if (!std::isdigit(static_cast<unsigned char>(v[j]))) return -1;
+  }
+  return major;
+}
+
+class Loader {
+ public:
+  Scenario load(const std::string& path);
+
+ private:
+  struct Item {
+    const XMLElement* element;
+    const SourceFile* file;
+  };
+
+  // Parses `shown` (a path usable from the working directory) and returns its root.
+  const XMLElement& open(const fs::path& shown, SourceFile& file, const SourceLocation& missing_at);
+  void readRoot(const XMLElement& root, SourceFile& file, bool top);
+  void include(const XMLElement& element, const SourceFile& file);
+  void dispatch(Scenario& scenario);
+  void checkAcrossElements(Scenario& scenario) const;
+
+  std::vector<std::unique_ptr<tinyxml2::XMLDocument>> documents_;
+  std::vector<std::unique_ptr<SourceFile>> files_;
+  std::vector<fs::path> include_chain_;        // identities of the files being read
+  std::vector<std::string> include_chain_shown_;
+  std::vector<Item> items_;                    // top-level elements, includes spliced in
+  std::string scenario_name_;
+  SourceLocation top_where_;
+};
+
+const XMLElement& Loader::open(const fs::path& shown, SourceFile& file, const SourceLocation& missing_at) {
+  file.shown = shown.string();
+  file.directory = fs::absolute(shown).lexically_normal().parent_path();
+  auto doc = std::make_unique<tinyxml2::XMLDocument>();
+  if (doc->LoadFile(file.shown.c_str()) == tinyxml2::XML_ERROR_FILE_NOT_FOUND ||
+      doc->ErrorID() == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED) {
+    throw InputError(missing_at, "cannot open " + file.shown);
+  }
+  if (doc->Error()) throw InputError(SourceLocation{file.shown, doc->ErrorLineNum()}, describeXmlError(*doc));
+  const XMLElement* root = doc->RootElement();
+  if (const XMLElement* second = root->NextSiblingElement()) {
+    scenario_file::failAt(*second, file, "a second root element; a file holds one <scenario> or <scenario_part>");
+  }
+  documents_.push_back(std::move(doc));
+  return *root;
+}
+
+void Loader::readRoot(const XMLElement& root, SourceFile& file, bool top) {
+  const char* expected = top ? kTopRoot : kPartRoot;
+  if (std::string(root.Name()) != expected) {
+    scenario_file::failAt(root, file,
+                          top ? "the root element must be <scenario> (a <scenario_part> is meant to be included)"
+                              : "an included file's root element must be <scenario_part>");
+  }
+  ElementReader r(root, file);
+  const std::string version = r.requiredText("version");
+  const int major = majorVersion(version);
+  if (major < 0) r.fail("version=\"" + version + "\" is not a format version such as \"1\" or \"1.0\"");
+  if (major != kScenarioFormatVersion) {
+    r.fail("format version " + version + " is not supported: this build reads version " +
+           std::to_string(kScenarioFormatVersion));
+  }
+  const std::string unit = r.choice("angle", "rad", std::array<const char*, 2>{"rad", "deg"});
+  file.angle = unit == "deg" ? AngleUnit::Deg : AngleUnit::Rad;
+  if (top) {
+    scenario_name_ = r.text("name", fs::path(file.shown).stem().string());
+    top_where_ = r.where();
+  }
+  r.rejectUnknownAttributes();
+  const auto kids =
+      r.children({"include", "platform", "controller", "sim", "terrain", "targets", "sweeps", "render"});
+  for (const XMLElement* k : kids) {
+    if (std::string(k->Name()) == "include") {
+      include(*k, file);
+    } else {
+      items_.push_back({k, &file});
+    }
+  }
+}
+
+void Loader::include(const XMLElement& element, const SourceFile& file) {
+  ElementReader r(element, file);
+  const std::string relative = r.requiredText("file");
+  r.rejectUnknownAttributes();
+  r.children({});
+  const fs::path target = fs::path(relative).is_absolute()
+                              ? fs::path(relative).lexically_normal()
+                              : (fs::path(file.shown).parent_path() / relative).lexically_normal();
+  if (!fs::is_regular_file(target)) r.fail("included file not found: " + target.string());
+  const fs::path identity = fs::weakly_canonical(target);
+  for (const fs::path& open_file : include_chain_) {
+    if (open_file != identity) continue;
+    std::string chain;
+    for (const std::string& s : include_chain_shown_) chain += s + " -> ";
+    r.fail("include cycle: " + chain + target.string());
+  }
+  files_.push_back(std::make_unique<SourceFile>());
+  SourceFile& part = *files_.back();
+  const XMLElement& root = open(target, part, r.where());
+  include_chain_.push_back(identity);
+  include_chain_shown_.push_back(part.shown);
+  readRoot(root, part, false);
+  include_chain_.pop_back();
+  include_chain_shown_.pop_back();
+}
+
+void Loader::dispatch(Scenario& scenario) {
+  std::map<std::string, Item> first;
+  std::optional<ControllerSpec> scenario_controller;
+  for (const Item& item : items_) {
+    const XMLElement& e = *item.element;
+    const SourceFile& f = *item.file;
+    const std::string name = e.Name();
+    const auto [it, inserted] = first.emplace(name, item);
+    if (!inserted) {
+      const SourceLocation earlier = scenario_file::locationOf(*it->second.element, *it->second.file);
+      scenario_file::failAt(e, f, "a scenario holds one <" + name + ">; the first is at " + earlier.str());
+    }
+    if (name == "platform") scenario.platform = scenario_file::readPlatform(e, f);
+    else if (name == "controller") scenario_controller = scenario_file::readController(e, f);
+    else if (name == "sim") scenario.sim = scenario_file::readSim(e, f);
+    else if (name == "terrain") scenario_file::readTerrain(e, f, scenario);
+    else if (name == "targets") scenario.targets = scenario_file::readTargets(e, f);
+    else if (name == "sweeps") scenario.sweeps = scenario_file::readSweeps(e, f);
+    else if (name == "render") scenario.render = scenario_file::readRender(e, f);
+  }
+  if (!first.count("platform")) {
+    throw InputError(top_where_, "<scenario>: no <platform> (write one, or include a platform file)");
+  }
+  if (!first.count("sim")) {
+    scenario.sim.where = SourceLocation{top_where_.file, 0};
+    scenario.sim.contact.where = scenario.sim.where;
+  }
+  if (scenario_controller) scenario.platform.controller = *scenario_controller;
+  if (scenario.platform.controller.factory.empty()) {
+    throw InputError(scenario.platform.where,
+                     "<platform>: no <controller> here or at the top level of the scenario");
+  }
+}
+
+void Loader::checkAcrossElements(Scenario& scenario) const {
+  const PlatformSpec& p = scenario.platform;
+  const auto root = scenario_file::urdfRootBody(p.urdf);
+  const auto massMessage = [&](double offset) {
+    return "trunk_mass_offset must be > " + scenario_file::formatNumber(-root->mass) + " kg: the root body of " +
+           p.urdf + " (link " + root->link + " and the links fixed to it) weighs " +
+           scenario_file::formatNumber(root->mass) + " kg (got " + scenario_file::formatNumber(offset) + ")";
+  };
+  if (root && p.trunk_mass_offset <= -root->mass) {
+    throw InputError(p.where, "<platform>: " + massMessage(p.trunk_mass_offset));
+  }
+  for (const SweepSpec& sweep : scenario.sweeps) {
+    const std::string tag = std::string("<") + scenario_file::axisElementName(sweep.kind) + ">: ";
+    for (const SweepAxis& axis : sweep.axes) {
+      std::vector<double> values = axis.values;
+      if (sweep.kind == SweepSpec::Kind::Random) values = {axis.min, axis.max};
+      for (double v : values) {
+        if (axis.variable == "platform.trunk_mass_offset" && root && v <= -root->mass) {
+          throw InputError(axis.where, tag + massMessage(v));
+        }
+        if (axis.variable == "contact.mu_static" && v < scenario.sim.contact.mu_dynamic) {
+          throw InputError(axis.where, tag + "contact.mu_static values must be >= the contact's mu_dynamic (" +
+                                           scenario_file::formatNumber(scenario.sim.contact.mu_dynamic) +
+                                           ") (got " + scenario_file::formatNumber(v) + ")");
+        }
+      }
+    }
+  }
+}
+
+Scenario Loader::load(const std::string& path) {
+  files_.push_back(std::make_unique<SourceFile>());
+  SourceFile& top = *files_.back();
+  const fs::path shown = fs::path(path).lexically_normal();
+  if (!fs::is_regular_file(shown)) throw InputError(SourceLocation{shown.string(), 0}, "scenario file not found");
+  const XMLElement& root = open(shown, top, SourceLocation{shown.string(), 0});
+  include_chain_.push_back(fs::weakly_canonical(shown));
+  include_chain_shown_.push_back(top.shown);
+  readRoot(root, top, true);
+
+  Scenario scenario;
+  scenario.file = fs::absolute(shown).lexically_normal().string();
+  scenario.name = scenario_name_;
+  scenario.version = kScenarioFormatVersion;
+  dispatch(scenario);
+  checkAcrossElements(scenario);
+  return scenario;
+}
+
+}  // namespace
+
+Scenario loadScenario(const std::string& path) { return Loader().load(path); }
+
+}  // namespace pronk
