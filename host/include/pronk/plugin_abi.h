@@ -15,10 +15,23 @@
  *     set by whoever allocates it; fields are only ever appended. A reader uses
  *     the fields that fit in min(struct_size, sizeof(what it knows)) and treats
  *     the rest as zero / NULL;
+ *   - an array of size-prefixed structs (pronk_factory::params) is contiguous
+ *     and every entry carries the same struct_size, which is the array's stride:
+ *     a reader steps by the first entry's struct_size, never by its own sizeof;
+ *   - the one exception is pronk_param_value, a name/value pair frozen at two
+ *     pointers: it never grows, so it carries no struct_size;
  *   - no C++ types and no exceptions cross the boundary: functions return a
  *     pronk_status and write a message into a caller-owned buffer;
  *   - strings are UTF-8, NUL-terminated, owned by whoever allocated them and
- *     valid for the lifetime stated on each field.
+ *     valid for the lifetime stated on each field;
+ *   - a function given (char* error, size_t error_size) writes, on failure, a
+ *     NUL-terminated message truncated to error_size bytes (nothing when
+ *     error_size is 0).
+ *
+ * Threads: pronk_plugin_query is called once per load. create() may be called
+ * from several threads at once, and different instances may run on different
+ * threads at once; one instance is only ever used by one thread at a time. So a
+ * plugin keeps its mutable state in its instances, not in globals.
  *
  * Frames and units: world frame is Z-up, gravity along -z; SI units (m, s, kg,
  * rad, N, N m). Quaternions are (w, x, y, z). Joint vectors are in the
@@ -27,6 +40,8 @@
  *
  * Version history:
  *   1.0  first version.
+ * A later minor version only appends fields and functions; a plugin that
+ * negotiated 1.n must not read what 1.(n+1) added.
  */
 #ifndef PRONK_PLUGIN_ABI_H
 #define PRONK_PLUGIN_ABI_H
@@ -87,7 +102,8 @@ typedef struct pronk_param_decl {
   const char* description;   /* one line */
 } pronk_param_decl;
 
-/* A parameter value as written in the scenario (already checked by the host). */
+/* A parameter value as written in the scenario (already checked by the host).
+   Frozen: no struct_size, never extended; arrays of it have stride sizeof(pronk_param_value). */
 typedef struct pronk_param_value {
   const char* name;
   const char* value;
@@ -125,7 +141,9 @@ typedef struct pronk_host_api {
   int32_t (*foot_count)(void* host);
   /* Name of controller joint i (host-owned, valid while the instance lives), NULL if out of range. */
   const char* (*joint_name)(void* host, int32_t joint);
-  /* Lower/upper position limit, velocity limit (rad/s) and effort limit (N m) of joint i. */
+  /* Lower/upper position limit, velocity limit (rad/s) and effort limit (N m) of joint i.
+     A limit the model does not give is +-infinity (effort: infinity or 0). Each output
+     pointer may be NULL. */
   pronk_status (*joint_limits)(void* host, int32_t joint, double* lower, double* upper,
                                double* velocity, double* effort);
   double (*total_mass)(void* host);                 /* kg */
@@ -142,7 +160,8 @@ typedef struct pronk_host_api {
   pronk_status (*foot_position_base)(void* host, int32_t foot, const double* q,
                                      double position_base[3]);
   /* 3 x 3 row-major: d(foot position in trunk frame) / d(q of that foot's leg joints), for
-     legs with exactly three actuated joints; PRONK_ERROR_UNSUPPORTED otherwise. */
+     legs with exactly three actuated joints; PRONK_ERROR_UNSUPPORTED otherwise. `q` holds
+     all joint_count joint positions, as for foot_position_base. */
   pronk_status (*leg_jacobian_base)(void* host, int32_t foot, const double* q, double* jacobian);
   /* Record a named event (phase change, lift-off ...) in the episode trace at time t. */
   void (*emit_event)(void* host, double time, const char* name, const char* detail);
@@ -200,7 +219,8 @@ typedef struct pronk_factory {
   const pronk_environment_ops* environment; /* kind == ENVIRONMENT */
 } pronk_factory;
 
-/* Filled by the plugin; struct_size set by the host. Pointers stay valid until dlclose. */
+/* Zeroed by the host, which sets struct_size; filled by the plugin, which writes only
+   fields that fit in struct_size. Pointers stay valid until dlclose. */
 typedef struct pronk_plugin_manifest {
   uint32_t struct_size;
   uint32_t abi_version;      /* negotiated version, written by the plugin */
@@ -210,9 +230,16 @@ typedef struct pronk_plugin_manifest {
   const pronk_factory* const* factories;
 } pronk_plugin_manifest;
 
-/* The entry point. Returns PRONK_ERROR_VERSION (with a message) for a different major. */
+/* The entry point. Returns PRONK_ERROR_VERSION (with a message) for a different major;
+   otherwise writes manifest->abi_version = PRONK_ABI_VERSION(host major, min(own minor,
+   host minor)) and the rest of the manifest. */
 typedef pronk_status (*pronk_plugin_query_fn)(uint32_t host_abi_version, pronk_plugin_manifest* manifest,
                                               char* error, size_t error_size);
+
+/* A plugin defines this function; the declaration gives it default visibility even in a
+   library built with -fvisibility=hidden, and lets the compiler check its signature. */
+PRONK_PLUGIN_EXPORT pronk_status pronk_plugin_query(uint32_t host_abi_version, pronk_plugin_manifest* manifest,
+                                                    char* error, size_t error_size);
 
 #ifdef __cplusplus
 }

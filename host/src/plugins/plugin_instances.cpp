@@ -1,0 +1,115 @@
+// Owners of plugin instances: create() and destroy() paired, status codes and
+// the plugin's messages turned into pronk::Error on the host side.
+#include <cmath>
+#include <cstring>
+
+#include "pronk/plugin_registry.h"
+
+namespace pronk {
+namespace {
+
+constexpr size_t kMessageSize = 1024;
+
+struct Message {
+  char text[kMessageSize] = "";
+  std::string str() const {
+    std::string s(text, strnlen(text, kMessageSize));
+    return s.empty() ? "no message" : s;
+  }
+};
+
+std::string describeFactory(const pronk_factory& f, const std::string& origin) {
+  return factoryKindName(f.kind) + " '" + f.name + "' (from '" + origin + "')";
+}
+
+void* create(const pronk_factory& f, const std::string& origin, const pronk_host_api& host,
+             const ResolvedParams& params, pronk_factory_kind kind) {
+  if (f.kind != static_cast<uint32_t>(kind) || !f.create ||
+      (kind == PRONK_FACTORY_CONTROLLER ? !f.controller : !f.environment)) {
+    throw Error(describeFactory(f, origin) + " is not a " + factoryKindName(kind));
+  }
+  void* instance = nullptr;
+  Message m;
+  const pronk_status st = f.create(&host, params.data(), params.size(), &instance, m.text, kMessageSize);
+  if (st != PRONK_OK || !instance) {
+    throw Error(describeFactory(f, origin) + " could not be created: " +
+                (st == PRONK_OK ? std::string("create() returned no instance") : m.str()));
+  }
+  return instance;
+}
+
+}  // namespace
+
+ControllerInstance::ControllerInstance(const pronk_factory& factory, const std::string& origin,
+                                       const pronk_host_api& host, const ResolvedParams& params)
+    : factory_(factory), origin_(origin), instance_(create(factory, origin, host, params, PRONK_FACTORY_CONTROLLER)) {}
+
+ControllerInstance::~ControllerInstance() { factory_.controller->destroy(instance_); }
+
+std::string ControllerInstance::describe() const { return describeFactory(factory_, origin_); }
+
+void ControllerInstance::reset(const pronk_robot_state& state) {
+  if (!factory_.controller->reset) return;
+  Message m;
+  if (factory_.controller->reset(instance_, &state, m.text, kMessageSize) != PRONK_OK) {
+    throw Error(describe() + ": reset failed: " + m.str());
+  }
+}
+
+void ControllerInstance::compute(const pronk_robot_state& state, double* torque) {
+  Message m;
+  if (factory_.controller->compute(instance_, &state, torque, m.text, kMessageSize) != PRONK_OK) {
+    throw Error(describe() + ": compute failed at t = " + std::to_string(state.time) + " s: " + m.str());
+  }
+}
+
+EnvironmentInstance::EnvironmentInstance(const pronk_factory& factory, const std::string& origin,
+                                         const pronk_host_api& host, const ResolvedParams& params)
+    : factory_(factory), origin_(origin), instance_(create(factory, origin, host, params, PRONK_FACTORY_ENVIRONMENT)) {}
+
+EnvironmentInstance::~EnvironmentInstance() { factory_.environment->destroy(instance_); }
+
+std::string EnvironmentInstance::describe() const { return describeFactory(factory_, origin_); }
+
+std::vector<double> EnvironmentInstance::reset(const std::vector<double>& task, uint64_t seed,
+                                               const pronk_robot_state& state) {
+  std::vector<double> observation(static_cast<size_t>(factory_.observation_size), 0.0);
+  Message m;
+  if (factory_.environment->reset(instance_, task.data(), static_cast<int32_t>(task.size()), seed, &state,
+                                  observation.data(), m.text, kMessageSize) != PRONK_OK) {
+    throw Error(describe() + ": reset failed: " + m.str());
+  }
+  return observation;
+}
+
+void EnvironmentInstance::act(const std::vector<double>& action) {
+  if (static_cast<int32_t>(action.size()) != factory_.action_size) {
+    throw Error(describe() + " takes " + std::to_string(factory_.action_size) + " action numbers, got " +
+                std::to_string(action.size()));
+  }
+  Message m;
+  if (factory_.environment->act(instance_, action.data(), m.text, kMessageSize) != PRONK_OK) {
+    throw Error(describe() + ": act failed: " + m.str());
+  }
+}
+
+bool EnvironmentInstance::step(const pronk_robot_state& state, double* torque) {
+  int32_t done = 0;
+  Message m;
+  if (factory_.environment->step(instance_, &state, torque, &done, m.text, kMessageSize) != PRONK_OK) {
+    throw Error(describe() + ": step failed at t = " + std::to_string(state.time) + " s: " + m.str());
+  }
+  return done != 0;
+}
+
+double EnvironmentInstance::finish(const pronk_robot_state& state) {
+  double reward = 0;
+  Message m;
+  if (factory_.environment->finish(instance_, &state, &reward, m.text, kMessageSize) != PRONK_OK) {
+    throw Error(describe() + ": finish failed: " + m.str());
+  }
+  if (!std::isfinite(reward)) throw Error(describe() + ": finish returned a reward that is not finite");
+  return reward;
+}
+
+}  // namespace pronk

@@ -1,0 +1,135 @@
+#include "hold_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+
+#include "abi_boundary.h"
+#include "force_distribution.h"
+
+namespace pronk::guided_jump {
+
+const pronk_param_decl kHoldParamDecls[4] = {
+    {sizeof(pronk_param_decl), "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad",
+     "joint stiffness towards the stance"},
+    {sizeof(pronk_param_decl), "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad", "joint damping"},
+    {sizeof(pronk_param_decl), "stance", PRONK_PARAM_VECTOR, 0, -3.2, 3.2, 3, "0 0.75 -1.5", "rad",
+     "joint positions held by every leg: hip, thigh, calf"},
+    {sizeof(pronk_param_decl), "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
+     "1: feet in contact carry the weight through J^T f; 0: PD only"},
+};
+
+HoldSettings readHoldSettings(const ParamReader& read) {
+  HoldSettings s;
+  s.kp = read.real("kp");
+  s.kd = read.real("kd");
+  const std::vector<double> stance = read.vector("stance");
+  s.stance = {stance[0], stance[1], stance[2]};
+  s.gravity_compensation = read.integer("gravity_compensation") != 0;
+  return s;
+}
+
+namespace {
+
+// The host API functions this controller calls were all in ABI 1.0.
+constexpr size_t kHostApiSize_1_0 = offsetof(pronk_host_api, log) + sizeof(pronk_host_api::log);
+constexpr size_t kStateSize_1_0 = offsetof(pronk_robot_state, foot_in_contact) + sizeof(pronk_robot_state::foot_in_contact);
+
+}  // namespace
+
+HoldController::HoldController(const pronk_host_api* host, const HoldSettings& settings)
+    : host_(host), settings_(settings) {
+  if (!host || host->struct_size < kHostApiSize_1_0) {
+    throw InvalidArgument("the host API is missing or older than ABI 1.0");
+  }
+  if (!host->joint_count || !host->foot_count || !host->joint_limits || !host->total_mass || !host->gravity ||
+      !host->foot_jacobian_world || !host->leg_jacobian_base) {
+    throw InvalidArgument("the host API lacks a kinematics function this controller needs");
+  }
+  joint_count_ = host->joint_count(host->host);
+  foot_count_ = host->foot_count(host->host);
+  if (foot_count_ < 1) throw std::runtime_error("the robot has no feet");
+  if (joint_count_ != 3 * foot_count_) {
+    throw std::runtime_error("guided_jump needs exactly 3 joints per leg; the robot has " + std::to_string(joint_count_) +
+                             " joints for " + std::to_string(foot_count_) + " feet");
+  }
+  const std::vector<double> q(static_cast<size_t>(joint_count_), 0.0);
+  double leg_jacobian[9];
+  for (int foot = 0; foot < foot_count_; ++foot) {
+    if (host->leg_jacobian_base(host->host, foot, q.data(), leg_jacobian) != PRONK_OK) {
+      throw std::runtime_error("guided_jump needs exactly 3 joints per leg; the host has no 3-joint leg Jacobian for foot " +
+                               std::to_string(foot));
+    }
+  }
+  effort_limit_.resize(joint_count_);
+  for (int j = 0; j < joint_count_; ++j) {
+    double effort = std::numeric_limits<double>::infinity();
+    if (host->joint_limits(host->host, j, nullptr, nullptr, nullptr, &effort) != PRONK_OK) {
+      throw std::runtime_error("the host has no limits for joint " + std::to_string(j));
+    }
+    effort_limit_(j) = (std::isfinite(effort) && effort > 0) ? effort : std::numeric_limits<double>::infinity();
+  }
+  mass_ = host->total_mass(host->host);
+  double g[3] = {0, 0, 0};
+  host->gravity(host->host, g);
+  gravity_ = Eigen::Vector3d(g[0], g[1], g[2]);
+  if (!std::isfinite(mass_) || mass_ <= 0 || !gravity_.allFinite()) {
+    throw std::runtime_error("the host reports a mass or gravity that is not usable");
+  }
+  jacobian_.resize(3, 6 + joint_count_);
+}
+
+void HoldController::checkState(const pronk_robot_state& s) const {
+  if (s.struct_size < kStateSize_1_0) throw InvalidArgument("the robot state is older than ABI 1.0");
+  if (s.joint_count != joint_count_ || s.foot_count != foot_count_) {
+    throw InvalidArgument("the state has " + std::to_string(s.joint_count) + " joints and " +
+                          std::to_string(s.foot_count) + " feet; the robot has " + std::to_string(joint_count_) +
+                          " and " + std::to_string(foot_count_));
+  }
+  if (!s.q || !s.qd || !s.foot_position || !s.foot_in_contact) throw InvalidArgument("the state lacks an array");
+}
+
+void HoldController::reset(const pronk_robot_state& state) {
+  checkState(state);
+  if (host_->emit_event) {
+    host_->emit_event(host_->host, state.time, "hold",
+                      settings_.gravity_compensation ? "stance PD + gravity compensation" : "stance PD");
+  }
+}
+
+void HoldController::compute(const pronk_robot_state& s, double* torque) {
+  checkState(s);
+  if (!torque) throw InvalidArgument("no torque buffer");
+  const int n = joint_count_;
+  Eigen::Map<const Eigen::VectorXd> q(s.q, n), qd(s.qd, n);
+  Eigen::Map<Eigen::VectorXd> tau(torque, n);
+  for (int j = 0; j < n; ++j) tau(j) = settings_.kp * (settings_.stance[j % 3] - q(j)) - settings_.kd * qd(j);
+
+  if (settings_.gravity_compensation) {
+    std::vector<int> contact;
+    for (int f = 0; f < foot_count_; ++f) {
+      if (s.foot_in_contact[f]) contact.push_back(f);
+    }
+    Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
+    for (size_t i = 0; i < contact.size(); ++i) {
+      points.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::Vector3d>(s.foot_position + 3 * contact[i]);
+    }
+    const Eigen::Vector3d com(s.com_position[0], s.com_position[1], s.com_position[2]);
+    const Eigen::Matrix3Xd forces = distributeWeight(points, com, mass_, gravity_);
+    for (size_t i = 0; i < contact.size(); ++i) {
+      if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
+        throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
+      }
+      tau -= jacobian_.rightCols(n).transpose() * forces.col(static_cast<Eigen::Index>(i));
+    }
+  }
+
+  for (int j = 0; j < n; ++j) {
+    if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
+    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
+  }
+}
+
+}  // namespace pronk::guided_jump

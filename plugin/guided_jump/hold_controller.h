@@ -1,0 +1,62 @@
+// Holding the stance: joint PD towards the stance plus gravity compensation.
+//   tau = kp (q_stance - q) - kd qd  -  sum over feet in contact of J_i^T f_i
+// where f = G^+ (-m g, 0) are the ground forces that carry the weight with no
+// moment about the CoM (force_distribution.h) and J_i is the joint part (columns
+// 6..) of foot i's world Jacobian: a leg pushes the ground with -f_i, which takes
+// tau = -J_i^T f_i. Each torque is then clamped to the joint's effort limit.
+// This is the controller the jump's thrust, flight and landing phases build on.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "plugin_params.h"
+#include "pronk/plugin_abi.h"
+
+namespace pronk::guided_jump {
+
+struct HoldSettings {
+  double kp = 100;                          // N m/rad
+  double kd = 2;                            // N m s/rad
+  std::array<double, 3> stance{0, 0.75, -1.5};  // rad per leg: hip, thigh, calf
+  bool gravity_compensation = true;
+};
+
+// The parameters a HoldSettings is read from, shared by both factories.
+extern const pronk_param_decl kHoldParamDecls[4];
+
+// The settings from kHoldParamDecls' parameters (throws InvalidArgument).
+HoldSettings readHoldSettings(const ParamReader& read);
+
+class HoldController {
+ public:
+  // Checks the robot through `host`: at least one leg, every leg exactly three
+  // joints (leg_jacobian_base answers), joint_count = 3 x foot_count. Throws
+  // std::runtime_error saying what does not fit. `host` must outlive the controller.
+  HoldController(const pronk_host_api* host, const HoldSettings& settings);
+
+  // Emits the "hold" event.
+  void reset(const pronk_robot_state& state);
+  // Writes joint_count torques.
+  void compute(const pronk_robot_state& state, double* torque);
+
+  int jointCount() const { return joint_count_; }
+  int footCount() const { return foot_count_; }
+
+ private:
+  void checkState(const pronk_robot_state& state) const;
+
+  const pronk_host_api* host_;
+  HoldSettings settings_;
+  int joint_count_ = 0;
+  int foot_count_ = 0;
+  double mass_ = 0;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  Eigen::VectorXd effort_limit_;  // N m; infinity when none
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;  // 3 x (6 + n) buffer
+};
+
+}  // namespace pronk::guided_jump
