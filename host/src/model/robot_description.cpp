@@ -196,6 +196,11 @@ class Builder {
           if (joint->dynamics) {
             j.damping = joint->dynamics->damping;
             j.friction = joint->dynamics->friction;
+            if (j.friction > 0) {
+              warnings_.push_back(origin_ + ":" + std::to_string(lineOfJoint(j.name)) + ": joint '" + j.name +
+                                  "' has friction " + std::to_string(j.friction) +
+                                  "; Coulomb joint friction is not modelled (damping is)");
+            }
           }
           Body body;
           body.name = child->name;

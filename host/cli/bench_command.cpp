@@ -1,0 +1,166 @@
+// `pronk bench`: how fast the simulation runs and how far its answer is from a
+// converged reference of the same model, measured side by side in one run.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "pronk/controller.h"
+#include "pronk/episode.h"
+#include "pronk/scenario.h"
+#include "pronk/world.h"
+
+namespace pronk::cli {
+namespace {
+
+// The converged reference: an error-controlled high-order integrator at a
+// tolerance where halving it no longer moves the landing (docs/physics.md).
+SimSpec referenceSettings(SimSpec sim) {
+  sim.integrator = "runge_kutta_merson";
+  sim.accuracy = 1e-7;
+  return sim;
+}
+
+struct Measurement {
+  std::string label;
+  double wall_per_sim = 0;        // median wall seconds per simulated second
+  double steps_per_sim = 0;       // integrator steps per simulated second
+  double steps_per_wall = 0;
+  Eigen::Vector3d final_trunk = Eigen::Vector3d::Zero();
+  Eigen::Vector3d com_touchdown = Eigen::Vector3d::Constant(NAN);
+  double t_lift_off = NAN, t_touchdown = NAN;
+  std::string status = "ok";
+};
+
+Measurement measure(const Scenario& scenario, const SimSpec& sim, const std::string& controller_name,
+                    double duration, int repeats, const std::string& label) {
+  Measurement m;
+  m.label = label;
+  std::vector<double> walls;
+  for (int r = 0; r < repeats; ++r) {
+    Scenario with_settings = scenario;
+    with_settings.sim = sim;
+    World world(with_settings);
+    auto controller = makeBuiltinController(controller_name, world, nullptr);
+    EpisodeOptions options;
+    options.duration = duration;
+    const EpisodeResult result = runEpisode(world, *controller, options);
+    walls.push_back(result.wall_seconds / duration);
+    if (r > 0) continue;
+    m.steps_per_sim = result.statistics.integrator_steps / duration;
+    m.final_trunk = result.trace.samples.back().base_position;
+    if (const TraceEvent* e = result.trace.findEvent("lift_off")) m.t_lift_off = e->time;
+    if (const TraceEvent* e = result.trace.findEvent("touchdown")) {
+      m.t_touchdown = e->time;
+      // The CoM at the last tick before touchdown: flight is over, landing not begun.
+      for (const TraceSample& s : result.trace.samples) {
+        if (s.time < e->time - 1e-9) m.com_touchdown = s.com_position;
+      }
+    }
+    if (result.failure) m.status = result.failure->reason + " at " + std::to_string(result.failure->time) + " s";
+  }
+  std::sort(walls.begin(), walls.end());
+  m.wall_per_sim = walls[walls.size() / 2];
+  m.steps_per_wall = m.steps_per_sim / m.wall_per_sim;
+  return m;
+}
+
+std::string describe(const SimSpec& sim) {
+  char buffer[128];
+  if (sim.integrator == "semi_explicit_euler" || sim.integrator == "explicit_euler") {
+    std::snprintf(buffer, sizeof buffer, "%s h %.0e", sim.integrator.c_str(), sim.step);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%s acc %.0e", sim.integrator.c_str(), sim.accuracy);
+  }
+  return buffer;
+}
+
+void printHeader() {
+  std::printf("| %-34s | %9s | %9s | %11s | %11s | %13s | %14s | %8s | %8s | %s |\n", "setting", "wall/sim", "x realtime",
+              "steps/sim s", "steps/wall s", "trunk xy (mm)", "CoM at td (mm)", "t_lo (s)", "t_td (s)", "status");
+  std::printf("|%s|%s|%s|%s|%s|%s|%s|%s|%s|%s|\n", std::string(36, '-').c_str(), std::string(11, '-').c_str(),
+              std::string(11, '-').c_str(), std::string(13, '-').c_str(), std::string(13, '-').c_str(),
+              std::string(15, '-').c_str(), std::string(16, '-').c_str(), std::string(10, '-').c_str(),
+              std::string(10, '-').c_str(), std::string(8, '-').c_str());
+}
+
+void printRow(const Measurement& m, const Measurement* reference) {
+  std::string trunk = "-", com = "-";
+  if (reference) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.2f", 1e3 * (m.final_trunk - reference->final_trunk).head<2>().norm());
+    trunk = b;
+    if (std::isfinite(m.com_touchdown.x()) && std::isfinite(reference->com_touchdown.x())) {
+      std::snprintf(b, sizeof b, "%.2f", 1e3 * (m.com_touchdown - reference->com_touchdown).norm());
+      com = b;
+    }
+  }
+  std::printf("| %-34s | %9.3f | %9.1fx | %11.0f | %11.0f | %13s | %14s | %8.3f | %8.3f | %s |\n", m.label.c_str(),
+              m.wall_per_sim, 1.0 / m.wall_per_sim, m.steps_per_sim, m.steps_per_wall, trunk.c_str(), com.c_str(),
+              m.t_lift_off, m.t_touchdown, m.status.c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int benchCommand(const CommonOptions&, const BenchOptions& options) {
+  const std::string path = options.scenario.empty() ? dataDirectory() + "/scenarios/go1/stand.xml" : options.scenario;
+  const Scenario scenario = loadScenario(path);
+  const SimSpec defaults = scenario.sim;
+  const SimSpec reference = referenceSettings(defaults);
+  const double jump_duration = 2.0;  // long enough for the landing to settle
+  std::printf("pronk bench: %s, robot %s, %d timed run(s) per row, single thread\n", path.c_str(),
+              scenario.platform.urdf.c_str(), options.repeats);
+  std::printf("Errors are against the reference (%s) of the same model: trunk xy at the end, CoM at the last tick "
+              "before touchdown.\n\n",
+              describe(reference).c_str());
+
+  std::printf("Standing, %.1f s (built-in controller `stand`):\n\n", 1.5);
+  printHeader();
+  const Measurement stand_default = measure(scenario, defaults, "stand", 1.5, options.repeats, "default: " + describe(defaults));
+  const Measurement stand_reference = measure(scenario, reference, "stand", 1.5, 1, "reference: " + describe(reference));
+  printRow(stand_default, &stand_reference);
+  printRow(stand_reference, &stand_reference);
+
+  std::printf("\nJump with landing, %.1f s (built-in controller `scripted_jump`):\n\n", jump_duration);
+  printHeader();
+  const Measurement jump_reference =
+      measure(scenario, reference, "scripted_jump", jump_duration, 1, "reference: " + describe(reference));
+  const Measurement jump_default =
+      measure(scenario, defaults, "scripted_jump", jump_duration, options.repeats, "default: " + describe(defaults));
+  printRow(jump_default, &jump_reference);
+  printRow(jump_reference, &jump_reference);
+  std::printf("\nRatio default/reference speed: stand %.1fx, jump %.1fx\n",
+              stand_reference.wall_per_sim / stand_default.wall_per_sim,
+              jump_reference.wall_per_sim / jump_default.wall_per_sim);
+
+  if (options.sweep) {
+    std::printf("\nSweep, jump with landing, %.1f s:\n\n", jump_duration);
+    printHeader();
+    std::vector<SimSpec> sweep;
+    for (double h : {1e-4, 2e-4, 5e-4, 1e-3}) {
+      SimSpec s = defaults;
+      s.integrator = "semi_explicit_euler";
+      s.step = h;
+      sweep.push_back(s);
+    }
+    for (double acc : {1e-2, 3e-3, 1e-3, 1e-4}) {
+      SimSpec s = defaults;
+      s.integrator = "semi_explicit_euler2";
+      s.accuracy = acc;
+      sweep.push_back(s);
+    }
+    for (double acc : {1e-3, 1e-5, 1e-6}) {
+      SimSpec s = defaults;
+      s.integrator = "runge_kutta_merson";
+      s.accuracy = acc;
+      sweep.push_back(s);
+    }
+    for (const SimSpec& s : sweep) {
+      printRow(measure(scenario, s, "scripted_jump", jump_duration, options.repeats, describe(s)), &jump_reference);
+    }
+  }
+  return kOk;
+}
+
+}  // namespace pronk::cli

@@ -1,0 +1,44 @@
+// The `pronk` subcommands. Each returns the process exit status (see exit_codes).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pronk::cli {
+
+// Documented in docs/cli.md and `pronk --help`.
+enum ExitCode : int {
+  kOk = 0,
+  kInternalError = 1,    // a bug: an unexpected exception
+  kUsageError = 2,       // bad flags or arguments
+  kInputError = 3,       // a scenario, URDF or plugin that cannot be used
+  kEpisodeFailed = 4,    // the run completed but an episode failed (non-foot contact, divergence ...)
+};
+
+struct CommonOptions {
+  std::vector<std::string> plugin_paths;  // --plugin, repeatable
+};
+
+int pluginsCommand(const CommonOptions& common);
+int validateCommand(const CommonOptions& common, const std::vector<std::string>& files);
+
+struct RunOptions {
+  std::string scenario;
+  std::string out_dir;        // "" = no files
+  std::string controller;     // overrides the scenario's controller when set
+  double duration = 0;        // 0 = the scenario's
+};
+int runCommand(const CommonOptions& common, const RunOptions& options);
+
+struct BenchOptions {
+  std::string scenario;       // "" = the built-in Go1 scenario
+  int repeats = 3;
+  bool sweep = false;         // the whole speed-vs-accuracy table
+};
+int benchCommand(const CommonOptions& common, const BenchOptions& options);
+
+// Where the project's data (robots, scenarios) is: the source tree in a build,
+// or <prefix>/share/pronk when installed.
+std::string dataDirectory();
+
+}  // namespace pronk::cli

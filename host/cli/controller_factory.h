@@ -1,0 +1,24 @@
+// The scenario's controller, built-in or from a plugin, behind one interface.
+#pragma once
+
+#include <memory>
+
+#include "pronk/controller.h"
+#include "pronk/plugin_registry.h"
+#include "pronk/scenario.h"
+
+namespace pronk::cli {
+
+// Loads the plugins on the search path (explicit entries first).
+void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths);
+
+// Checks that the scenario's controller exists and its parameters fit its
+// schema; throws InputError at the offending line.
+void checkController(const ControllerSpec& spec, const PluginRegistry& registry);
+
+// A built-in controller (when the name is one and no plugin is named) or a
+// plugin controller with its parameters resolved against the factory schema.
+std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const PluginRegistry& registry,
+                                           const World& world, Trace* trace);
+
+}  // namespace pronk::cli

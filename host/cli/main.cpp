@@ -1,0 +1,62 @@
+// pronk: run quadruped jump scenarios on the Simbody host.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.h"
+#include "pronk/error.h"
+
+int main(int argc, char** argv) {
+  using namespace pronk::cli;
+  CLI::App app{"pronk: learned, precise, omnidirectional jumps of legged robots in simulation"};
+  app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success, 1 internal error, 2 usage error, 3 bad input (scenario, URDF, plugin),\n"
+      "4 an episode failed (non-foot contact, divergence, controller error).");
+  CommonOptions common;
+  app.add_option("--plugin", common.plugin_paths,
+                 "plugin library or directory, searched before PRONK_PLUGIN_PATH and the install directory "
+                 "(repeatable)");
+
+  auto* plugins = app.add_subcommand("plugins", "list loadable plugins, their ABI versions and factories");
+
+  std::vector<std::string> validate_files;
+  auto* validate = app.add_subcommand("validate", "check scenario files (and their URDFs and controllers)");
+  validate->add_option("files", validate_files, "scenario files")->required()->check(CLI::ExistingFile);
+
+  RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "simulate a scenario and print what happened");
+  run_cmd->add_option("scenario", run.scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  run_cmd->add_option("--out", run.out_dir, "directory for results.json and the trace CSV");
+  run_cmd->add_option("--controller", run.controller, "controller to use instead of the scenario's (e.g. stand)");
+  run_cmd->add_option("--duration", run.duration, "episode length in s (default: the scenario's)")
+      ->check(CLI::PositiveNumber);
+
+  BenchOptions bench;
+  auto* bench_cmd = app.add_subcommand("bench", "simulation speed and accuracy: default settings vs a converged reference");
+  bench_cmd->add_option("--scenario", bench.scenario, "scenario whose robot and settings to measure "
+                                                      "(default: scenarios/go1/stand.xml)")
+      ->check(CLI::ExistingFile);
+  bench_cmd->add_option("--repeats", bench.repeats, "timed runs per setting (median reported)")
+      ->check(CLI::Range(1, 100));
+  bench_cmd->add_flag("--sweep", bench.sweep, "measure the whole table of integrators and steps");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kUsageError;
+  }
+  try {
+    if (*plugins) return pluginsCommand(common);
+    if (*validate) return validateCommand(common, validate_files);
+    if (*run_cmd) return runCommand(common, run);
+    if (*bench_cmd) return benchCommand(common, bench);
+  } catch (const pronk::Error& e) {
+    std::cerr << "pronk: " << e.what() << "\n";
+    return kInputError;
+  } catch (const std::exception& e) {
+    std::cerr << "pronk: internal error: " << e.what() << "\n";
+    return kInternalError;
+  }
+  return kUsageError;
+}

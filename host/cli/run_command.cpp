@@ -1,0 +1,104 @@
+// `pronk run`: simulate a scenario's episode and report what happened.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "controller_factory.h"
+#include "pronk/episode.h"
+#include "pronk/world.h"
+
+namespace pronk::cli {
+namespace {
+
+nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+// Largest foot penetration proxy: the peak vertical foot force over the episode.
+double peakFootForce(const Trace& trace) {
+  double peak = 0;
+  for (const TraceSample& s : trace.samples)
+    for (const Eigen::Vector3d& f : s.foot_force) peak = std::max(peak, f.z());
+  return peak;
+}
+
+}  // namespace
+
+int runCommand(const CommonOptions& common, const RunOptions& options) {
+  Scenario scenario = loadScenario(options.scenario);
+  if (!options.controller.empty()) {
+    scenario.platform.controller = ControllerSpec{options.controller, "", {}, {"--controller", 0}};
+  }
+  const double duration = options.duration > 0 ? options.duration : scenario.sim.duration;
+  PluginRegistry registry;
+  loadPlugins(registry, common.plugin_paths);
+  World world(scenario);
+  for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
+  Trace events;  // controller events are collected here and merged into the episode trace
+  auto controller = makeController(scenario.platform.controller, registry, world, &events);
+
+  EpisodeOptions episode;
+  episode.duration = duration;
+  EpisodeResult result = runEpisode(world, *controller, episode);
+  result.trace.events.insert(result.trace.events.begin(), events.events.begin(), events.events.end());
+  std::stable_sort(result.trace.events.begin(), result.trace.events.end(),
+                   [](const TraceEvent& a, const TraceEvent& b) { return a.time < b.time; });
+
+  const TraceSample& first = result.trace.samples.front();
+  const TraceSample& last = result.trace.samples.back();
+  const double simulated = last.time;
+  std::printf("scenario   %s\n", options.scenario.c_str());
+  std::printf("robot      %s (%s), %.3f kg, %d joints, %d feet\n", world.robot().name.c_str(),
+              scenario.platform.urdf.c_str(), world.totalMass(), world.jointCount(), world.footCount());
+  std::printf("controller %s\n", scenario.platform.controller.factory.c_str());
+  std::printf("simulated  %.3f s in %.3f s wall (%.1fx real time), %ld integrator steps (%s)\n", simulated,
+              result.wall_seconds, simulated / std::max(result.wall_seconds, 1e-9), result.statistics.integrator_steps,
+              scenario.sim.integrator.c_str());
+  std::printf("\n| %-10s | %-24s | %-24s |\n", "", "start", "end");
+  std::printf("|------------|--------------------------|--------------------------|\n");
+  auto row = [](const char* name, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    std::printf("| %-10s | %7.4f %7.4f %7.4f  | %7.4f %7.4f %7.4f  |\n", name, a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
+  };
+  row("trunk [m]", first.base_position, last.base_position);
+  row("CoM [m]", first.com_position, last.com_position);
+  row("CoM v[m/s]", first.com_velocity, last.com_velocity);
+  std::printf("\nevents:\n");
+  for (const TraceEvent& e : result.trace.events) {
+    std::printf("  %7.3f s  %s%s%s\n", e.time, e.name.c_str(), e.detail.empty() ? "" : "  ", e.detail.c_str());
+  }
+  std::printf("\nstatus: %s\n", result.failure ? ("FAILED (" + result.failure->reason + ": " + result.failure->detail +
+                                                   ")").c_str()
+                                               : "ok");
+
+  if (!options.out_dir.empty()) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(options.out_dir, ec);
+    if (ec) throw Error("--out " + options.out_dir + ": cannot create the directory: " + ec.message());
+    nlohmann::json j;
+    j["scenario"] = fs::absolute(options.scenario).string();
+    j["robot"] = world.robot().name;
+    j["controller"] = scenario.platform.controller.factory;
+    j["simulated_s"] = simulated;
+    j["wall_s"] = result.wall_seconds;
+    j["integrator_steps"] = result.statistics.integrator_steps;
+    j["failed"] = result.failure.has_value();
+    j["failure_reason"] = result.failure ? result.failure->reason : "";
+    j["failure_detail"] = result.failure ? result.failure->detail : "";
+    j["start"] = {{"trunk", vec(first.base_position)}, {"com", vec(first.com_position)}};
+    j["end"] = {{"trunk", vec(last.base_position)}, {"com", vec(last.com_position)}, {"com_velocity", vec(last.com_velocity)}};
+    j["peak_foot_force_n"] = peakFootForce(result.trace);
+    j["events"] = nlohmann::json::array();
+    for (const TraceEvent& e : result.trace.events) j["events"].push_back({{"time", e.time}, {"name", e.name}, {"detail", e.detail}});
+    const std::string json_path = (fs::path(options.out_dir) / "results.json").string();
+    std::ofstream out(json_path);
+    if (!(out << j.dump(2) << "\n")) throw Error(json_path + ": cannot write");
+    const std::string trace_path = (fs::path(options.out_dir) / "trace.csv").string();
+    writeTraceCsv(result.trace, trace_path);
+    std::printf("wrote %s and %s\n", json_path.c_str(), trace_path.c_str());
+  }
+  return result.failure ? kEpisodeFailed : kOk;
+}
+
+}  // namespace pronk::cli

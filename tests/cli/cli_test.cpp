@@ -1,0 +1,133 @@
+// Scenario tests through the `pronk` command: exit codes, printed errors and
+// results.json, exactly as a user or a downstream CI sees them.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+namespace {
+
+struct Outcome {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Outcome pronk(const std::string& args) {
+  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
+  Outcome out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
+std::string cliScenario(const std::string& name) { return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name; }
+
+nlohmann::json runAndRead(const std::string& scenario, const std::string& name, int expected_status,
+                          const std::string& extra = "") {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/" + name;
+  std::filesystem::remove_all(dir);
+  const Outcome o = pronk("run " + scenario + " --out " + dir + " " + extra);
+  EXPECT_EQ(o.status, expected_status) << o.output;
+  std::ifstream in(dir + "/results.json");
+  EXPECT_TRUE(in.good()) << o.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/trace.csv"));
+  nlohmann::json j;
+  if (in) in >> j;
+  return j;
+}
+
+TEST(Cli, ShippedScenariosValidate) {
+  const Outcome o = pronk("validate " + source("scenarios/go1/stand.xml") + " " + source("scenarios/aliengo/stand.xml") +
+                          " " + source("scenarios/go1/terrain_demo.xml"));
+  EXPECT_EQ(o.status, 0) << o.output;
+}
+
+TEST(Cli, Go1StandsWhereForwardKinematicsPutsIt) {
+  const auto j = runAndRead(source("scenarios/go1/stand.xml"), "go1_stand", 0);
+  EXPECT_FALSE(j.at("failed").get<bool>());
+  // 2 * 0.213 * cos(0.75) + 0.02: the hip-to-foot height plus the foot radius.
+  EXPECT_NEAR(j.at("end").at("trunk")[2].get<double>(), 0.3317, 2e-3);
+  EXPECT_NEAR(j.at("end").at("trunk")[0].get<double>(), 0.0, 2e-3);
+}
+
+TEST(Cli, AliengoStands) {
+  const auto j = runAndRead(source("scenarios/aliengo/stand.xml"), "aliengo_stand", 0);
+  EXPECT_FALSE(j.at("failed").get<bool>());
+  // 2 * 0.25 * cos(0.75) + 0.0265.
+  EXPECT_NEAR(j.at("end").at("trunk")[2].get<double>(), 0.3923, 3e-3);
+}
+
+TEST(Cli, ScriptedHopLeavesTheGroundAndLands) {
+  const auto j = runAndRead(cliScenario("go1_scripted_hop.xml"), "go1_hop", 0);
+  EXPECT_FALSE(j.at("failed").get<bool>());
+  double lift_off = -1, touchdown = -1;
+  for (const auto& e : j.at("events")) {
+    if (e.at("name") == "lift_off" && lift_off < 0) lift_off = e.at("time");
+    if (e.at("name") == "touchdown" && touchdown < 0) touchdown = e.at("time");
+  }
+  ASSERT_GT(lift_off, 0.45);   // after the crouch
+  ASSERT_GT(touchdown, lift_off + 0.1);
+  EXPECT_NEAR(j.at("end").at("trunk")[2].get<double>(), 0.3317, 1e-2);  // standing again
+}
+
+TEST(Cli, NonFootContactFailsTheRunWithStatus4) {
+  const auto j = runAndRead(cliScenario("go1_fall.xml"), "go1_fall", 4);
+  EXPECT_TRUE(j.at("failed").get<bool>());
+  EXPECT_EQ(j.at("failure_reason"), "non_foot_contact");
+  EXPECT_NE(j.at("failure_detail").get<std::string>().find("trunk"), std::string::npos);
+}
+
+TEST(Cli, PluginControllerRunsFromAScenario) {
+  const auto j = runAndRead(cliScenario("go1_guided_hold.xml"), "go1_guided_hold", 0);
+  EXPECT_FALSE(j.at("failed").get<bool>());
+  EXPECT_EQ(j.at("controller"), "guided_jump");
+  EXPECT_NEAR(j.at("end").at("trunk")[2].get<double>(), 0.3317, 3e-3);
+}
+
+TEST(Cli, BadPluginParameterNamesFileAndLine) {
+  const Outcome o = pronk("validate " + cliScenario("go1_bad_param.xml"));
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find(cliScenario("go1_bad_param.xml") + ":6:"), std::string::npos) << o.output;
+}
+
+TEST(Cli, BrokenScenarioIsAnInputError) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/broken.xml";
+  std::ofstream(path) << "<scenario version=\"1\" name=\"b\">\n  <sim step=\"abc\"/>\n</scenario>\n";
+  const Outcome o = pronk("run " + path);
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find(path + ":2:"), std::string::npos) << o.output;
+}
+
+TEST(Cli, UsageErrorsExitWith2) {
+  EXPECT_EQ(pronk("run").status, 2);
+  EXPECT_EQ(pronk("frobnicate").status, 2);
+  EXPECT_EQ(pronk("run " + source("scenarios/go1/stand.xml") + " --duration -1").status, 2);
+  EXPECT_EQ(pronk("--help").status, 0);
+}
+
+TEST(Cli, MissingPluginPathIsAnInputError) {
+  const Outcome o = pronk("--plugin /nonexistent/libnothing.so plugins");
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find("/nonexistent/libnothing.so"), std::string::npos) << o.output;
+}
+
+TEST(Cli, PluginsListsTheGuidedJumpFactories) {
+  const Outcome o = pronk("plugins");
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("jump"), std::string::npos);
+  EXPECT_NE(o.output.find("ABI 1.0"), std::string::npos) << o.output;
+}
+
+}  // namespace
