@@ -1,6 +1,7 @@
 #include "controller_factory.h"
 
 #include <algorithm>
+#include <filesystem>
 
 namespace pronk::cli {
 namespace {
@@ -21,13 +22,29 @@ const pronk_factory& findFactory(const ControllerSpec& spec, const PluginRegistr
     throw InputError(spec.where, "no controller named '" + spec.factory + "' (built-in or in a loaded plugin); known: " +
                                      known);
   }
+  if (!spec.plugin.empty()) {
+    // The scenario names the library the factory must come from: its plugin
+    // name, or a path (compared by file name).
+    const PluginLibrary* library = registry.libraryOf(factory);
+    const bool by_path = spec.plugin.find('/') != std::string::npos;
+    const std::string wanted = by_path ? std::filesystem::path(spec.plugin).filename().string() : spec.plugin;
+    const std::string have = by_path ? std::filesystem::path(library->path()).filename().string() : library->name();
+    if (wanted != have) {
+      throw InputError(spec.where, "controller '" + spec.factory + "' comes from " + library->path() + " (plugin '" +
+                                       library->name() + "'), not from plugin '" + spec.plugin + "'");
+    }
+  }
   return *factory;
 }
 
 }  // namespace
 
-void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths) {
-  registry.loadSearchPath(PluginRegistry::searchPath(explicit_paths));
+void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths,
+                 const ControllerSpec* controller) {
+  std::vector<std::string> entries;
+  if (controller && controller->plugin.find('/') != std::string::npos) entries.push_back(controller->plugin);
+  entries.insert(entries.end(), explicit_paths.begin(), explicit_paths.end());
+  registry.loadSearchPath(PluginRegistry::searchPath(entries));
 }
 
 void checkController(const ControllerSpec& spec, const PluginRegistry& registry) {
@@ -47,7 +64,7 @@ std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const Plu
   if (isBuiltin(spec)) return makeBuiltinController(spec.factory, world, trace);
   const pronk_factory& factory = findFactory(spec, registry);
   const ResolvedParams params = resolveParams(factory, spec.params, spec.where);
-  return std::make_unique<PluginController>(factory, params.data(), params.size(), world, trace);
+  return std::make_unique<PluginController>(factory, registry.libraryOf(&factory)->path(), params, world, trace);
 }
 
 }  // namespace pronk::cli

@@ -9,8 +9,11 @@
 
 namespace pronk::cli {
 
-// Loads the plugins on the search path (explicit entries first).
-void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths);
+// Loads the plugins on the search path: the library a scenario's controller
+// names by path (if any), then --plugin entries, PRONK_PLUGIN_PATH and the
+// install directory.
+void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths,
+                 const ControllerSpec* controller = nullptr);
 
 // Checks that the scenario's controller exists and its parameters fit its
 // schema; throws InputError at the offending line.

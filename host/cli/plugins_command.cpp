@@ -42,12 +42,12 @@ int pluginsCommand(const CommonOptions& common) {
 }
 
 int validateCommand(const CommonOptions& common, const std::vector<std::string>& files) {
-  PluginRegistry registry;
-  loadPlugins(registry, common.plugin_paths);
   int failures = 0;
   for (const std::string& file : files) {
     try {
       const Scenario scenario = loadScenario(file);
+      PluginRegistry registry;
+      loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
       World world(scenario);  // reads the URDF, checks the feet, legs and joint names
       for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
       checkController(scenario.platform.controller, registry);

@@ -32,7 +32,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   }
   const double duration = options.duration > 0 ? options.duration : scenario.sim.duration;
   PluginRegistry registry;
-  loadPlugins(registry, common.plugin_paths);
+  loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
   World world(scenario);
   for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
   Trace events;  // controller events are collected here and merged into the episode trace

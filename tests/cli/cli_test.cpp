@@ -109,6 +109,18 @@ TEST(Cli, BrokenScenarioIsAnInputError) {
   EXPECT_NE(o.output.find(path + ":2:"), std::string::npos) << o.output;
 }
 
+TEST(Cli, ControllerFromTheWrongPluginIsAnInputError) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/wrong_plugin.xml";
+  std::ofstream(path) << "<scenario version=\"1\" name=\"w\">\n  <include file=\"" << source("scenarios/platforms/go1.xml")
+                      << "\"/>\n  <controller name=\"guided_jump\" plugin=\"someone_else\"/>\n</scenario>\n";
+  const Outcome o = pronk("validate " + path);
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find(path + ":3:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("someone_else"), std::string::npos) << o.output;
+}
+
 TEST(Cli, UsageErrorsExitWith2) {
   EXPECT_EQ(pronk("run").status, 2);
   EXPECT_EQ(pronk("frobnicate").status, 2);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pronk/plugin_abi.h"
+#include "pronk/plugin_registry.h"
 #include "pronk/trace.h"
 #include "pronk/world.h"
 
@@ -68,20 +69,19 @@ class AbiStateView {
   std::vector<double> foot_position_, foot_force_;
 };
 
-// A plugin controller instance (factory kind CONTROLLER). Owns the instance.
+// A plugin controller (factory kind CONTROLLER) driving a World. Checks the
+// factory's declared joint count and control period against the world, then
+// owns the instance. `origin` names the library in messages.
 class PluginController : public Controller {
  public:
-  // `params` must hold every declared parameter (see the plugin registry).
-  PluginController(const pronk_factory& factory, const pronk_param_value* params, int32_t param_count,
+  PluginController(const pronk_factory& factory, const std::string& origin, const ResolvedParams& params,
                    const World& world, Trace* trace);
-  ~PluginController() override;
   void reset(const RobotState& state) override;
   Eigen::VectorXd compute(const RobotState& state) override;
 
  private:
-  const pronk_factory& factory_;
   HostApi host_;
-  void* instance_ = nullptr;
+  std::unique_ptr<ControllerInstance> instance_;
 };
 
 }  // namespace pronk

@@ -7,6 +7,11 @@
 namespace pronk {
 namespace {
 
+void log(void*, int32_t level, const char* message) {
+  static const char* prefix[] = {"info", "warning", "error"};
+  std::fprintf(stderr, "plugin %s: %s\n", prefix[std::clamp(level, 0, 2)], message ? message : "");
+}
+
 const HostApi& self(void* host) { return *static_cast<const HostApi*>(host); }
 bool validFoot(void* host, int32_t foot) { return foot >= 0 && foot < self(host).world().footCount(); }
 
@@ -46,39 +51,51 @@ pronk_status footPositionWorld(void* host, int32_t foot, double p[3]) {
   return PRONK_OK;
 }
 
+// Kinematics callbacks run Simbody code, which may throw: no exception may cross
+// into the plugin, so they become a status.
+template <typename F>
+pronk_status guarded(void* host, F&& f) {
+  try {
+    f();
+    return PRONK_OK;
+  } catch (const std::exception& e) {
+    log(host, 2, e.what());
+    return PRONK_ERROR_FAILED;
+  }
+}
+
 pronk_status footJacobianWorld(void* host, int32_t foot, double* jacobian) {
   if (!validFoot(host, foot) || !jacobian) return PRONK_ERROR_INVALID_ARGUMENT;
+  return guarded(host, [&] {
   const Eigen::MatrixXd J = self(host).world().footJacobianWorld(foot);
   Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobian, J.rows(), J.cols()) = J;
-  return PRONK_OK;
+  });
 }
 
 pronk_status footPositionBase(void* host, int32_t foot, const double* q, double p[3]) {
   if (!validFoot(host, foot) || !q) return PRONK_ERROR_INVALID_ARGUMENT;
-  const World& w = self(host).world();
-  const Eigen::Vector3d v = w.footPositionBase(foot, Eigen::Map<const Eigen::VectorXd>(q, w.jointCount()));
-  for (int i = 0; i < 3; ++i) p[i] = v(i);
-  return PRONK_OK;
+  return guarded(host, [&] {
+    const World& w = self(host).world();
+    const Eigen::Vector3d v = w.footPositionBase(foot, Eigen::Map<const Eigen::VectorXd>(q, w.jointCount()));
+    for (int i = 0; i < 3; ++i) p[i] = v(i);
+  });
 }
 
 pronk_status legJacobianBase(void* host, int32_t foot, const double* q, double* jacobian) {
   if (!validFoot(host, foot) || !q || !jacobian) return PRONK_ERROR_INVALID_ARGUMENT;
   const World& w = self(host).world();
   if (w.legJoints()[foot].size() != 3) return PRONK_ERROR_UNSUPPORTED;
-  const Eigen::MatrixXd J = w.legJacobianBase(foot, Eigen::Map<const Eigen::VectorXd>(q, w.jointCount()));
-  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> out(jacobian);
-  out = J;
-  return PRONK_OK;
+  return guarded(host, [&] {
+    const Eigen::MatrixXd J = w.legJacobianBase(foot, Eigen::Map<const Eigen::VectorXd>(q, w.jointCount()));
+    Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> out(jacobian);
+    out = J;
+  });
 }
 
 void emitEvent(void* host, double time, const char* name, const char* detail) {
   if (Trace* t = self(host).trace()) t->addEvent(time, name ? name : "", detail ? detail : "");
 }
 
-void log(void*, int32_t level, const char* message) {
-  static const char* prefix[] = {"info", "warning", "error"};
-  std::fprintf(stderr, "plugin %s: %s\n", prefix[std::clamp(level, 0, 2)], message ? message : "");
-}
 
 }  // namespace
 
@@ -126,49 +143,40 @@ AbiStateView::AbiStateView(const RobotState& s) {
   view_.foot_in_contact = s.foot_in_contact.data();
 }
 
-PluginController::PluginController(const pronk_factory& factory, const pronk_param_value* params,
-                                   int32_t param_count, const World& world, Trace* trace)
-    : factory_(factory), host_(world, trace) {
-  if (factory.kind != PRONK_FACTORY_CONTROLLER || !factory.controller || !factory.create) {
-    throw Error(std::string("factory '") + factory.name + "' is not a controller");
-  }
+namespace {
+
+// Checks the sizes a factory declares against the world it is to drive.
+const pronk_factory& checkedFactory(const pronk_factory& factory, const std::string& origin, const World& world) {
+  const std::string who = std::string("controller '") + factory.name + "' (" + origin + ")";
+  if (factory.kind != PRONK_FACTORY_CONTROLLER || !factory.controller) throw Error(who + " is not a controller");
   if (factory.joint_count != 0 && factory.joint_count != world.jointCount()) {
-    throw Error(std::string("controller '") + factory.name + "' works with " + std::to_string(factory.joint_count) +
-                " joints; the robot has " + std::to_string(world.jointCount()));
+    throw Error(who + " works with " + std::to_string(factory.joint_count) + " joints; the robot has " +
+                std::to_string(world.jointCount()));
   }
   if (factory.control_period != 0 && std::abs(factory.control_period - world.controlPeriod()) > 1e-12) {
-    throw Error(std::string("controller '") + factory.name + "' runs every " + std::to_string(factory.control_period) +
+    throw Error(who + " runs every " + std::to_string(factory.control_period) +
                 " s; the scenario's control period is " + std::to_string(world.controlPeriod()) + " s");
   }
-  char error[512] = "";
-  const pronk_status st = factory.create(host_.api(), params, param_count, &instance_, error, sizeof error);
-  if (st != PRONK_OK || !instance_) {
-    throw Error(std::string("controller '") + factory.name + "' could not be created: " +
-                (error[0] ? error : "no message"));
-  }
+  return factory;
 }
 
-PluginController::~PluginController() {
-  if (instance_ && factory_.controller->destroy) factory_.controller->destroy(instance_);
-}
+}  // namespace
+
+PluginController::PluginController(const pronk_factory& factory, const std::string& origin,
+                                   const ResolvedParams& params, const World& world, Trace* trace)
+    : host_(world, trace),
+      instance_(std::make_unique<ControllerInstance>(checkedFactory(factory, origin, world), origin, *host_.api(),
+                                                     params)) {}
 
 void PluginController::reset(const RobotState& state) {
-  if (!factory_.controller->reset) return;
   const AbiStateView view(state);
-  char error[512] = "";
-  if (factory_.controller->reset(instance_, view.get(), error, sizeof error) != PRONK_OK) {
-    throw Error(std::string("controller '") + factory_.name + "' reset failed: " + error);
-  }
+  instance_->reset(*view.get());
 }
 
 Eigen::VectorXd PluginController::compute(const RobotState& state) {
   const AbiStateView view(state);
   Eigen::VectorXd tau = Eigen::VectorXd::Zero(state.q.size());
-  char error[512] = "";
-  if (factory_.controller->compute(instance_, view.get(), tau.data(), error, sizeof error) != PRONK_OK) {
-    throw Error(std::string("controller '") + factory_.name + "' failed at t = " + std::to_string(state.time) +
-                " s: " + error);
-  }
+  instance_->compute(*view.get(), tau.data());
   return tau;
 }
 

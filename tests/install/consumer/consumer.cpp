@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     const pronk_factory* factory = registry.find(PRONK_FACTORY_CONTROLLER, "limp");
     if (!factory) return 3;
     pronk::World world(scenario);
-    pronk::PluginController controller(*factory, nullptr, 0, world, nullptr);
+    pronk::PluginController controller(*factory, argv[2], pronk::ResolvedParams(), world, nullptr);
     const pronk::EpisodeResult result = pronk::runEpisode(world, controller, {0.05});
     std::printf("consumer: %zu samples, trunk z %.4f m\n", result.trace.samples.size(),
                 result.trace.samples.back().base_position.z());
