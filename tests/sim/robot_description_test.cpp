@@ -135,5 +135,32 @@ TEST(RobotDescription, MissingVisualMeshIsAWarningWithAPrimitive) {
   EXPECT_NEAR(robot.bodies[0].visuals[0].primitive->box_size.x(), 0.3, 1e-12);
 }
 
+TEST(RobotDescription, PackageUrisResolveThroughSearchPaths) {
+  const std::string mesh_dir = std::string(PRONK_SOURCE_DIR) + "/assets/robots";
+  const std::string path = writeTemp(
+      "package_mesh.urdf",
+      std::string("<robot name='r'>\n<link name='a'>") + kLink +
+          "<visual><geometry><mesh filename='package://go1/meshes/calf.obj'/></geometry></visual>"
+          "<collision><geometry><mesh filename='package://go1/meshes/calf.obj' scale='2 2 2'/></geometry></collision>"
+          "</link>\n</robot>");
+  UrdfOptions options;
+  options.package_paths = {mesh_dir};
+  const RobotDescription robot = loadUrdf(path, options);
+  EXPECT_TRUE(robot.warnings.empty());
+  ASSERT_EQ(robot.bodies[0].visuals.size(), 1u);
+  ASSERT_TRUE(robot.bodies[0].visuals[0].mesh_path);
+  EXPECT_EQ(*robot.bodies[0].visuals[0].mesh_path, std::filesystem::canonical(mesh_dir + "/go1/meshes/calf.obj").string());
+  // A collision mesh becomes its bounding box (scaled): the calf bar is about 0.2 m long.
+  ASSERT_EQ(robot.bodies[0].collisions.size(), 1u);
+  const CollisionShape& c = robot.bodies[0].collisions[0];
+  EXPECT_TRUE(c.from_mesh);
+  EXPECT_EQ(c.shape.type, ShapeType::Box);
+  EXPECT_GT(c.shape.box_size.z(), 2 * 0.2);
+  EXPECT_LT(c.shape.box_size.z(), 2 * 0.26);
+  // Without the search path the visual is missing: a warning and a primitive.
+  const RobotDescription bare = loadUrdf(path);
+  EXPECT_FALSE(bare.warnings.empty());
+}
+
 }  // namespace
 }  // namespace pronk

@@ -236,11 +236,15 @@ World::World(const RobotDescription& robot, const PlatformSpec& platform, const 
     if (w.robot.findJoint(o.joint) < 0) throw InputError(o.where, "no joint named '" + o.joint + "' in the robot");
   }
   for (const auto& [name, value] : platform.joint_positions) {
-    if (w.robot.findJoint(name) < 0) throw InputError(platform.where, "no joint named '" + name + "' in the robot");
+    const auto at = platform.joint_position_where.find(name);
+    if (w.robot.findJoint(name) < 0) {
+      throw InputError(at != platform.joint_position_where.end() ? at->second : platform.where,
+                       "no joint named '" + name + "' in the robot");
+    }
   }
   for (const auto& leg : w.leg_joints) {
     if (!platform.stance.empty() && platform.stance.size() != leg.size()) {
-      throw InputError(platform.where, "stance has " + std::to_string(platform.stance.size()) +
+      throw InputError(platform.initial_where.file.empty() ? platform.where : platform.initial_where, "stance has " + std::to_string(platform.stance.size()) +
                                            " values but a leg has " + std::to_string(leg.size()) + " joints");
     }
   }
