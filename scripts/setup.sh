@@ -15,7 +15,9 @@ esac
 # Every build and run dependency, from Debian's archive.
 PACKAGES="build-essential cmake pkg-config
   libsimbody-dev liburdfdom-dev libtinyxml2-dev libeigen3-dev libassimp-dev
-  libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev"
+  libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  libfreetype-dev fonts-dejavu-core"
 
 if [ "${PRONK_SKIP_APT:-0}" != 1 ]; then
   SUDO=""
@@ -35,7 +37,7 @@ cmake --preset release
 cmake --build --preset release -j "$jobs"
 
 if [ "$mode" = demo ]; then
-  ./build/release/bin/pronk run scenarios/go1/stand.xml --out out/go1-stand
+  ./build/release/bin/pronk run scenarios/go1/hop.xml --out out/go1-hop --video out/go1-hop/hop.mp4
 else
   ctest --preset release -j "$jobs"
 fi

@@ -6,7 +6,7 @@
 
 namespace pronk::cli {
 
-// Documented in docs/cli.md and `pronk --help`.
+// Documented in the README and in `pronk --help`.
 enum ExitCode : int {
   kOk = 0,
   kInternalError = 1,    // a bug: an unexpected exception
@@ -27,6 +27,11 @@ struct RunOptions {
   std::string out_dir;        // "" = no files
   std::string controller;     // overrides the scenario's controller when set
   double duration = 0;        // 0 = the scenario's
+  std::string video;          // "" = no video (unless the scenario's <render> names an output)
+  double speed = 0;           // playback speed; 0 = the scenario's (default 1)
+  double fps = 0;             // 0 = the scenario's (default 30)
+  std::string size;           // "WxH"; "" = the scenario's (default 1280x720)
+  std::string camera;         // side | follow | top | fixed; "" = the scenario's
 };
 int runCommand(const CommonOptions& common, const RunOptions& options);
 

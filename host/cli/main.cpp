@@ -30,6 +30,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--controller", run.controller, "controller to use instead of the scenario's (e.g. stand)");
   run_cmd->add_option("--duration", run.duration, "episode length in s (default: the scenario's)")
       ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--video", run.video, "write an H.264 MP4 of the episode (off-screen, OSMesa)");
+  run_cmd->add_option("--speed", run.speed, "video playback speed, e.g. 0.25 for slow motion")
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option("--fps", run.fps, "video frames per second")->check(CLI::Range(1.0, 240.0));
+  run_cmd->add_option("--size", run.size, "video size WIDTHxHEIGHT, both even (default 1280x720)");
+  run_cmd->add_option("--camera", run.camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
 
   BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "simulation speed and accuracy: default settings vs a converged reference");

@@ -47,7 +47,7 @@ nlohmann::json runAndRead(const std::string& scenario, const std::string& name, 
 
 TEST(Cli, ShippedScenariosValidate) {
   const Outcome o = pronk("validate " + source("scenarios/go1/stand.xml") + " " + source("scenarios/aliengo/stand.xml") +
-                          " " + source("scenarios/go1/terrain_demo.xml"));
+                          " " + source("scenarios/go1/terrain_demo.xml") + " " + source("scenarios/go1/hop.xml"));
   EXPECT_EQ(o.status, 0) << o.output;
 }
 
@@ -77,6 +77,22 @@ TEST(Cli, ScriptedHopLeavesTheGroundAndLands) {
   ASSERT_GT(lift_off, 0.45);   // after the crouch
   ASSERT_GT(touchdown, lift_off + 0.1);
   EXPECT_NEAR(j.at("end").at("trunk")[2].get<double>(), 0.3317, 1e-2);  // standing again
+}
+
+TEST(Cli, RunWritesAVideoOfTheHop) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/hop_video";
+  std::filesystem::remove_all(dir);
+  const Outcome o = pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir + "/hop.mp4 --size 320x240 --fps 20");
+  ASSERT_EQ(o.status, 0) << o.output;
+  // 2.0 s at half speed and 20 fps.
+  EXPECT_NE(o.output.find("80 frames"), std::string::npos) << o.output;
+  EXPECT_GT(std::filesystem::file_size(dir + "/hop.mp4"), 1000u);
+  EXPECT_EQ(pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir + "/x.mp4 --size 321x240").status, 3);
+  // A regular file where a directory should be: the error comes before the simulation.
+  const Outcome bad = pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir + "/hop.mp4/x.mp4");
+  EXPECT_EQ(bad.status, 3) << bad.output;
+  EXPECT_NE(bad.output.find(dir + "/hop.mp4/x.mp4"), std::string::npos) << bad.output;
+  EXPECT_EQ(bad.output.find("simulated"), std::string::npos) << bad.output;
 }
 
 TEST(Cli, NonFootContactFailsTheRunWithStatus4) {

@@ -1,0 +1,50 @@
+// An episode's trace turned into an MP4: frames sampled at the video's rate
+// (slow motion with speed < 1), the phase (thrust, flight, landing) named on
+// screen with its colour, the time, a timeline bar, the target and, at the
+// end, the landing error.
+#pragma once
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "pronk/robot_description.h"
+#include "pronk/terrain.h"
+#include "pronk/trace.h"
+#include "render/scene_renderer.h"
+
+namespace pronk::render {
+
+struct VideoOptions {
+  std::string path;
+  int width = 1280, height = 720;
+  double fps = 30;
+  double speed = 1;            // 0.25 = four times slower than real time
+  std::string camera = "side"; // side | follow | top | fixed
+  Eigen::Vector3d camera_position{0, -2, 0.6}, camera_look_at{0.3, 0, 0.2};  // fixed
+  double fovy_deg = 45;
+};
+
+struct VideoSummary {
+  std::string path;
+  int frames = 0;
+  double duration_s = 0;       // of the video
+  unsigned long long bytes = 0;
+  double wall_s = 0;
+  std::vector<std::string> warnings;
+};
+
+// The phase at time t from the trace's lift_off / touchdown events.
+struct PhaseSpan {
+  std::string name;            // "stance", "thrust", "flight", "landing"
+  double begin = 0, end = 0;
+};
+std::vector<PhaseSpan> phasesOf(const Trace& trace);
+
+// Renders the trace (which must hold body poses). `progress` gets one line per
+// second of work (frames, fps, ETA); nullptr for silence. Throws Error for an
+// unwritable path, a bad size or fps.
+VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
+                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress);
+
+}  // namespace pronk::render

@@ -1,0 +1,71 @@
+// Draws one frame of an episode with legacy OpenGL into an OSMesa buffer:
+// sky, a checkered ground with a grid, terrain boxes, the robot's URDF visuals
+// (meshes through assimp, primitives otherwise), the target with a yaw arrow,
+// a planned arc and foot contact markers.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pronk/robot_description.h"
+#include "pronk/terrain.h"
+#include "render/camera.h"
+#include "render/mesh_library.h"
+#include "render/offscreen_gl.h"
+
+namespace pronk::render {
+
+// What changes from frame to frame.
+struct FrameState {
+  std::vector<Eigen::Isometry3d> body_poses;  // one per RobotDescription body
+  std::vector<Eigen::Vector3d> foot_positions;
+  std::vector<uint8_t> foot_in_contact;
+};
+
+// Markers that stay the same over an episode.
+struct SceneMarkers {
+  std::optional<Eigen::Vector3d> target;       // world position of the target
+  double target_yaw = 0;                        // rad
+  std::vector<Eigen::Vector3d> planned_arc;     // polyline, world
+  std::optional<Eigen::Vector3d> predicted_landing;
+};
+
+// Colours the tests look for.
+inline const Eigen::Vector3d kTargetColour{0.9, 0.08, 0.08};
+inline const Eigen::Vector3d kSkyColour{0.72, 0.82, 0.93};
+
+class SceneRenderer {
+ public:
+  // Prepares the meshes of every visual. A visual mesh that cannot be read is
+  // drawn as the description's primitive fallback, with one warning in `warnings`.
+  SceneRenderer(int width, int height, const RobotDescription& robot, const Terrain& terrain,
+                std::vector<std::string>* warnings = nullptr);
+  ~SceneRenderer();
+
+  // Renders and returns the frame, RGBA, rows top to bottom.
+  void render(const Camera& camera, const SceneMarkers& markers, const FrameState& frame,
+              std::vector<uint8_t>& rgba);
+  int width() const { return gl_.width(); }
+  int height() const { return gl_.height(); }
+
+ private:
+  struct Drawable {
+    int body;
+    Eigen::Isometry3d pose_body;
+    const TriangleMesh* mesh;
+    Eigen::Vector4d rgba;
+  };
+  void drawMesh(const TriangleMesh& mesh, const Eigen::Affine3d& pose, const Eigen::Vector4d& rgba);
+  void drawGround(const Eigen::Vector3d& centre);
+
+  OffscreenGl gl_;
+  const RobotDescription& robot_;
+  const Terrain& terrain_;
+  MeshLibrary meshes_;
+  std::vector<std::unique_ptr<TriangleMesh>> primitives_;
+  std::vector<Drawable> drawables_;
+  TriangleMesh unit_box_, unit_sphere_, unit_cylinder_;
+};
+
+}  // namespace pronk::render

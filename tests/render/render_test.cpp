@@ -1,0 +1,151 @@
+// Off-screen rendering and encoding: pixels where the scene says they should
+// be, frame counts, the file read back by libavformat, determinism and errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "pronk/controller.h"
+#include "pronk/episode.h"
+#include "render/episode_video.h"
+#include "render/video_encoder.h"
+
+namespace pronk::render {
+namespace {
+
+std::string outDir() {
+  std::filesystem::create_directories(PRONK_RENDER_OUT_DIR);
+  return PRONK_RENDER_OUT_DIR;
+}
+
+PlatformSpec go1Platform() {
+  PlatformSpec p;
+  p.urdf = std::string(PRONK_SOURCE_DIR) + "/assets/robots/go1/go1.urdf";
+  p.feet = {"FR_foot", "FL_foot", "RR_foot", "RL_foot"};
+  p.stance = {0, 0.75, -1.5};
+  return p;
+}
+
+struct Episode {
+  RobotDescription robot = loadUrdf(go1Platform().urdf);
+  Terrain terrain{true, 0, {}};
+  Trace trace;
+  explicit Episode(double duration) {
+    World world(robot, go1Platform(), SimSpec{}, terrain);
+    auto controller = makeStandController(world, nullptr);
+    EpisodeOptions options;
+    options.duration = duration;
+    options.record_body_poses = true;
+    trace = runEpisode(world, *controller, options).trace;
+  }
+};
+
+Eigen::Vector3d pixel(const std::vector<uint8_t>& rgba, int width, const Eigen::Vector2d& at) {
+  const size_t i = (size_t(std::lround(at.y())) * width + size_t(std::lround(at.x()))) * 4;
+  return Eigen::Vector3d(rgba[i], rgba[i + 1], rgba[i + 2]) / 255.0;
+}
+
+TEST(Render, PixelsShowSkyGroundRobotAndTarget) {
+  Episode e(0.05);
+  const int w = 320, h = 240;
+  SceneRenderer renderer(w, h, e.robot, e.terrain);
+  Camera camera;
+  camera.eye = Eigen::Vector3d(0.3, -1.8, 0.5);
+  camera.target = Eigen::Vector3d(0.3, 0, 0.2);
+  SceneMarkers markers;
+  markers.target = Eigen::Vector3d(0.8, 0, 0);
+  const TraceSample& s = e.trace.samples.back();
+  std::vector<uint8_t> rgba;
+  renderer.render(camera, markers, {s.body_poses, s.foot_position, s.foot_in_contact}, rgba);
+  ASSERT_EQ(rgba.size(), size_t(w * h * 4));
+
+  // The sky fills the top row.
+  EXPECT_LT((pixel(rgba, w, {w / 2.0, 1}) - kSkyColour).norm(), 0.02);
+  // The ground (greyish green, not sky) fills the bottom row.
+  const Eigen::Vector3d ground = pixel(rgba, w, {w / 2.0, h - 2.0});
+  EXPECT_GT((ground - kSkyColour).norm(), 0.2);
+  EXPECT_NEAR(ground.x(), ground.z(), 0.05);
+  // The target disc is drawn in its colour where the target projects.
+  Eigen::Vector2d at;
+  ASSERT_TRUE(project(camera, w, h, *markers.target, at));
+  EXPECT_LT((pixel(rgba, w, at) - kTargetColour).norm(), 0.05) << pixel(rgba, w, at).transpose();
+  // The trunk (dark grey in the URDF) covers the projection of the trunk centre.
+  ASSERT_TRUE(project(camera, w, h, s.base_position, at));
+  const Eigen::Vector3d trunk = pixel(rgba, w, at);
+  EXPECT_LT(trunk.maxCoeff(), 0.45) << trunk.transpose();
+  // And a point of sky just above the trunk is not robot.
+  ASSERT_TRUE(project(camera, w, h, s.base_position + Eigen::Vector3d(0, 0, 0.35), at));
+  EXPECT_LT((pixel(rgba, w, at) - kSkyColour).norm(), 0.05);
+}
+
+TEST(Render, SameTraceGivesIdenticalFrames) {
+  Episode e(0.05);
+  SceneRenderer renderer(160, 120, e.robot, e.terrain);
+  const TraceSample& s = e.trace.samples.back();
+  std::vector<uint8_t> a, b;
+  renderer.render(Camera{}, {}, {s.body_poses, s.foot_position, s.foot_in_contact}, a);
+  renderer.render(Camera{}, {}, {s.body_poses, s.foot_position, s.foot_in_contact}, b);
+  EXPECT_EQ(a, b);
+}
+
+TEST(Render, VideoHasDurationTimesFpsOverSpeedFramesAndReadsBack) {
+  Episode e(0.5);
+  VideoOptions options;
+  options.path = outDir() + "/stand.mp4";
+  options.width = 320;
+  options.height = 240;
+  options.fps = 30;
+  options.speed = 0.5;
+  const VideoSummary summary = renderEpisodeVideo(e.trace, e.robot, e.terrain, {}, options, nullptr);
+  EXPECT_EQ(summary.frames, 30);  // 0.5 s / 0.5 x 30 fps
+  EXPECT_GT(summary.bytes, 0u);
+  const VideoInfo info = probeVideo(options.path);
+  EXPECT_EQ(info.codec, "h264");
+  EXPECT_EQ(info.width, 320);
+  EXPECT_EQ(info.height, 240);
+  EXPECT_EQ(info.frames, 30);
+  EXPECT_NEAR(info.duration_s, 1.0, 0.05);
+}
+
+TEST(Render, BadOutputsAreClearErrors) {
+  EXPECT_THROW(VideoEncoder("/nonexistent/dir/v.mp4", 320, 240, 30), Error);
+  try {
+    VideoEncoder("/nonexistent/dir/v.mp4", 320, 240, 30);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/v.mp4"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(VideoEncoder(outDir() + "/odd.mp4", 321, 240, 30), Error);
+  EXPECT_THROW(VideoEncoder(outDir() + "/zero.mp4", 320, 240, 0), Error);
+  EXPECT_FALSE(std::filesystem::exists(outDir() + "/odd.mp4"));
+}
+
+TEST(Render, UnreadableMeshIsAWarningAndAPrimitive) {
+  RobotDescription robot = loadUrdf(go1Platform().urdf);
+  const std::string bogus = outDir() + "/not_a_mesh.obj";
+  std::ofstream(bogus) << "this is not a mesh\n";
+  robot.bodies[0].visuals.at(0).mesh_path = bogus;
+  std::vector<std::string> warnings;
+  Terrain terrain(true, 0, {});
+  SceneRenderer renderer(64, 48, robot, terrain, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("not_a_mesh.obj"), std::string::npos);
+}
+
+TEST(Render, PhasesComeFromLiftOffAndTouchdown) {
+  Trace t;
+  t.samples.resize(2);
+  t.samples[1].time = 1.5;
+  EXPECT_EQ(phasesOf(t).size(), 1u);
+  t.addEvent(0.6, "lift_off");
+  t.addEvent(0.9, "touchdown");
+  const auto p = phasesOf(t);
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[0].name, "thrust");
+  EXPECT_EQ(p[1].name, "flight");
+  EXPECT_DOUBLE_EQ(p[1].begin, 0.6);
+  EXPECT_EQ(p[2].name, "landing");
+  EXPECT_DOUBLE_EQ(p[2].end, 1.5);
+}
+
+}  // namespace
+}  // namespace pronk::render
