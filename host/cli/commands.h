@@ -39,6 +39,7 @@ struct BenchOptions {
   std::string scenario;       // "" = the built-in Go1 scenario
   int repeats = 3;
   bool sweep = false;         // the whole speed-vs-accuracy table
+  bool video = false;         // end-to-end video throughput instead
 };
 int benchCommand(const CommonOptions& common, const BenchOptions& options);
 

@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--repeats", bench.repeats, "timed runs per setting (median reported)")
       ->check(CLI::Range(1, 100));
   bench_cmd->add_flag("--sweep", bench.sweep, "measure the whole table of integrators and steps");
+  bench_cmd->add_flag("--video", bench.video,
+                      "measure video instead: simulate the hop and encode 1280x720 H.264 at 30 fps, end to end");
 
   try {
     app.parse(argc, argv);
