@@ -1,5 +1,6 @@
 #include "render/episode_video.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -126,6 +127,16 @@ VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robo
                text, {0.6, 0.05, 0.05});
     }
     encoder.addFrame(rgba);
+    for (double still : options.stills) {
+      // The frame whose time is nearest the requested one.
+      const int wanted = int(std::lround(std::clamp(still, 0.0, sim_duration) / options.speed * options.fps));
+      if (std::min(wanted, frames - 1) != i) continue;
+      char suffix[64];
+      std::snprintf(suffix, sizeof suffix, "_t%.3f.png", t);
+      const std::string png = (std::filesystem::path(options.path).replace_extension("").string()) + suffix;
+      writePng(png, rgba, options.width, options.height);
+      summary.stills.push_back(png);
+    }
 
     const auto now = std::chrono::steady_clock::now();
     if (progress && (std::chrono::duration<double>(now - last_report).count() > 1.0 || i + 1 == frames)) {

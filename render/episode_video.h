@@ -23,6 +23,7 @@ struct VideoOptions {
   std::string camera = "side"; // side | follow | top | fixed
   Eigen::Vector3d camera_position{0, -2, 0.6}, camera_look_at{0.3, 0, 0.2};  // fixed
   double fovy_deg = 45;
+  std::vector<double> stills;  // simulated times (s) to also save as PNG next to the video
 };
 
 struct VideoSummary {
@@ -32,6 +33,7 @@ struct VideoSummary {
   unsigned long long bytes = 0;
   double wall_s = 0;
   std::vector<std::string> warnings;
+  std::vector<std::string> stills;  // PNG files written
 };
 
 // The phase at time t from the trace's lift_off / touchdown events.

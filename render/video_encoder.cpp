@@ -9,6 +9,7 @@ extern "C" {
 }
 
 #include <cmath>
+#include <cstdio>
 
 #include "pronk/error.h"
 
@@ -145,6 +146,42 @@ void VideoEncoder::finish() {
   v.finished = true;
   v.drain(true);
   av_write_trailer(v.format);
+}
+
+void writePng(const std::string& path, const std::vector<uint8_t>& rgba, int width, int height) {
+  const AVCodec* codec = avcodec_find_encoder(AV_CODEC_ID_PNG);
+  if (!codec) throw Error(path + ": no PNG encoder in this FFmpeg build");
+  AVCodecContext* context = avcodec_alloc_context3(codec);
+  AVFrame* frame = av_frame_alloc();
+  AVPacket* packet = av_packet_alloc();
+  std::string failure;
+  context->width = width;
+  context->height = height;
+  context->pix_fmt = AV_PIX_FMT_RGBA;
+  context->time_base = AVRational{1, 1};
+  if (avcodec_open2(context, codec, nullptr) < 0) {
+    failure = "cannot open the PNG encoder";
+  } else {
+    frame->format = AV_PIX_FMT_RGBA;
+    frame->width = width;
+    frame->height = height;
+    frame->data[0] = const_cast<uint8_t*>(rgba.data());
+    frame->linesize[0] = width * 4;
+    if (avcodec_send_frame(context, frame) < 0 || avcodec_receive_packet(context, packet) < 0) {
+      failure = "PNG encoding failed";
+    } else {
+      FILE* out = std::fopen(path.c_str(), "wb");
+      if (!out) failure = "cannot open for writing";
+      else {
+        if (std::fwrite(packet->data, 1, size_t(packet->size), out) != size_t(packet->size)) failure = "write failed";
+        std::fclose(out);
+      }
+    }
+  }
+  av_packet_free(&packet);
+  av_frame_free(&frame);
+  avcodec_free_context(&context);
+  if (!failure.empty()) throw Error(path + ": " + failure);
 }
 
 VideoInfo probeVideo(const std::string& path) {

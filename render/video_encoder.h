@@ -31,6 +31,10 @@ class VideoEncoder {
   int frames_ = 0;
 };
 
+// Writes one RGBA frame (rows top to bottom) as a PNG, through libavcodec's
+// PNG encoder. Throws Error naming the path when it cannot.
+void writePng(const std::string& path, const std::vector<uint8_t>& rgba, int width, int height);
+
 // What a video file holds, read back with libavformat (for tests and reports).
 struct VideoInfo {
   std::string codec;

@@ -32,6 +32,7 @@ struct RunOptions {
   double fps = 0;             // 0 = the scenario's (default 30)
   std::string size;           // "WxH"; "" = the scenario's (default 1280x720)
   std::string camera;         // side | follow | top | fixed; "" = the scenario's
+  std::vector<double> stills; // simulated times to save as PNG beside the video
 };
 int runCommand(const CommonOptions& common, const RunOptions& options);
 

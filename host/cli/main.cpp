@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--fps", run.fps, "video frames per second")->check(CLI::Range(1.0, 240.0));
   run_cmd->add_option("--size", run.size, "video size WIDTHxHEIGHT, both even (default 1280x720)");
+  run_cmd->add_option("--still", run.stills, "also save the video frame at this simulated time (s) as a PNG "
+                                             "(repeatable)")
+      ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--camera", run.camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
 
   BenchOptions bench;

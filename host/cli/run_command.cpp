@@ -37,6 +37,8 @@ render::VideoOptions videoOptions(const Scenario& scenario, const RunOptions& op
   if (options.speed > 0) v.speed = options.speed;
   if (options.fps > 0) v.fps = options.fps;
   if (!options.camera.empty()) v.camera = options.camera;
+  v.stills = options.stills;
+  if (!v.stills.empty() && v.path.empty()) throw Error("--still needs a video (--video FILE or a <render output>)");
   if (!options.size.empty()) {
     int w = 0, h = 0;
     char tail = 0;
@@ -168,6 +170,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
         result.trace, world.robot(), world.terrain(), markersFor(scenario, world, result.trace.samples.front()), video,
         &std::cerr);
     for (const std::string& w : v.warnings) std::cerr << "warning: " << w << "\n";
+    for (const std::string& png : v.stills) std::printf("still %s\n", png.c_str());
     std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
                 v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
   }

@@ -82,8 +82,10 @@ TEST(Cli, ScriptedHopLeavesTheGroundAndLands) {
 TEST(Cli, RunWritesAVideoOfTheHop) {
   const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/hop_video";
   std::filesystem::remove_all(dir);
-  const Outcome o = pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir + "/hop.mp4 --size 320x240 --fps 20");
+  const Outcome o = pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir +
+                          "/hop.mp4 --size 320x240 --fps 20 --still 0.7");
   ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/hop_t0.700.png")) << o.output;
   // 2.0 s at half speed and 20 fps.
   EXPECT_NE(o.output.find("80 frames"), std::string::npos) << o.output;
   EXPECT_GT(std::filesystem::file_size(dir + "/hop.mp4"), 1000u);
