@@ -1,0 +1,284 @@
+#include "method/ballistics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <stdexcept>
+
+namespace pronk::jump {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
+  char buffer[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buffer, sizeof buffer, fmt, args);
+  va_end(args);
+  return buffer;
+}
+
+bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+void requireFinite(const Eigen::Vector3d& v, const char* what) {
+  if (!finite(v)) {
+    throw std::invalid_argument(format("ballistics: %s (%g, %g, %g) is not finite", what, v.x(), v.y(), v.z()));
+  }
+}
+
+// |g_z| after checking that gravity points down.
+double downwardGravity(const Eigen::Vector3d& gravity) {
+  requireFinite(gravity, "gravity");
+  if (!(gravity.z() < 0.0)) {
+    throw std::invalid_argument(format("ballistics: gravity (%g, %g, %g) m/s^2 must have a negative z component",
+                                       gravity.x(), gravity.y(), gravity.z()));
+  }
+  return -gravity.z();
+}
+
+// The planar inverse (horizontal speed, hyperbola) assumes uniform horizontal motion.
+double verticalGravity(const Eigen::Vector3d& gravity, const char* who) {
+  const double g = downwardGravity(gravity);
+  if (std::hypot(gravity.x(), gravity.y()) > 1e-12 * gravity.norm()) {
+    throw std::invalid_argument(
+        format("%s: needs gravity along -z, got (%g, %g, %g) m/s^2", who, gravity.x(), gravity.y(), gravity.z()));
+  }
+  return g;
+}
+
+// Tolerance for "still rising" at the target, m/s.
+constexpr double kDescendingTolerance = 1e-12;
+
+LiftOffVelocity makeSolution(const Eigen::Vector3d& velocity, double flight_time, const Eigen::Vector3d& gravity) {
+  LiftOffVelocity solution;
+  solution.velocity = velocity;
+  solution.flight_time = flight_time;
+  solution.arrives_descending = velocity.z() + gravity.z() * flight_time <= kDescendingTolerance;
+  return solution;
+}
+
+}  // namespace
+
+Eigen::Vector3d standardGravity() { return Eigen::Vector3d(0.0, 0.0, -9.81); }
+
+// ---------------------------------------------------------------------------
+// Forward flight
+
+BallisticFlight::BallisticFlight(const FlightState& lift_off, const Eigen::Vector3d& gravity)
+    : lift_off_(lift_off), gravity_(gravity), g_down_(downwardGravity(gravity)) {
+  requireFinite(lift_off.position, "lift-off position");
+  requireFinite(lift_off.velocity, "lift-off velocity");
+}
+
+Eigen::Vector3d BallisticFlight::position(double t) const {
+  return lift_off_.position + lift_off_.velocity * t + 0.5 * gravity_ * t * t;
+}
+
+Eigen::Vector3d BallisticFlight::velocity(double t) const { return lift_off_.velocity + gravity_ * t; }
+
+FlightState BallisticFlight::state(double t) const { return FlightState{position(t), velocity(t)}; }
+
+double BallisticFlight::apexTime() const { return std::max(lift_off_.velocity.z(), 0.0) / g_down_; }
+
+double BallisticFlight::apexHeight() const {
+  const double vz = std::max(lift_off_.velocity.z(), 0.0);
+  return lift_off_.position.z() + vz * vz / (2.0 * g_down_);
+}
+
+Eigen::Vector3d BallisticFlight::apexPoint() const { return position(apexTime()); }
+
+std::optional<double> BallisticFlight::landingTime(double surface_height) const {
+  if (!std::isfinite(surface_height) || surface_height > apexHeight()) return std::nullopt;
+  // z(t) = h  <=>  (a/2) t^2 - vz t - (z0 - h) = 0 with a = |g_z|; the later root
+  // is (vz + sqrt(D)) / a, D = vz^2 + 2 a (z0 - h). For vz < 0 that form cancels,
+  // so it is rewritten through the product of the roots.
+  const double vz = lift_off_.velocity.z();
+  const double drop = lift_off_.position.z() - surface_height;
+  const double root = std::sqrt(std::max(vz * vz + 2.0 * g_down_ * drop, 0.0));
+  const double t = vz >= 0.0 ? (vz + root) / g_down_ : 2.0 * drop / (root - vz);
+  if (t < 0.0) return std::nullopt;
+  return t;
+}
+
+std::optional<Eigen::Vector3d> BallisticFlight::landingPoint(double surface_height) const {
+  const auto t = landingTime(surface_height);
+  if (!t) return std::nullopt;
+  Eigen::Vector3d p = position(*t);
+  p.z() = surface_height;  // exact by construction; removes the rounding of z(t)
+  return p;
+}
+
+std::optional<FlightState> BallisticFlight::landingState(double surface_height) const {
+  const auto t = landingTime(surface_height);
+  if (!t) return std::nullopt;
+  FlightState s = state(*t);
+  s.position.z() = surface_height;
+  return s;
+}
+
+// ---------------------------------------------------------------------------
+// Heuristic event times
+
+double heuristicApexTime(double lift_off_time, const FlightState& lift_off, const Eigen::Vector3d& gravity) {
+  return lift_off_time + BallisticFlight(lift_off, gravity).apexTime();
+}
+
+std::optional<double> heuristicTouchdownTime(double lift_off_time, const FlightState& lift_off,
+                                             double touchdown_com_height, const Eigen::Vector3d& gravity) {
+  const auto t = BallisticFlight(lift_off, gravity).landingTime(touchdown_com_height);
+  if (!t) return std::nullopt;
+  return lift_off_time + *t;
+}
+
+// ---------------------------------------------------------------------------
+// Inverse problems
+
+LiftOffVelocity liftOffVelocityForFlightTime(const Eigen::Vector3d& lift_off_position, const Eigen::Vector3d& target,
+                                             double flight_time, const Eigen::Vector3d& gravity) {
+  requireFinite(lift_off_position, "lift-off position");
+  requireFinite(target, "target");
+  downwardGravity(gravity);
+  if (!(flight_time > 0.0) || !std::isfinite(flight_time)) {
+    throw std::invalid_argument(
+        format("liftOffVelocityForFlightTime: flight time %g s must be positive and finite", flight_time));
+  }
+  const Eigen::Vector3d v = (target - lift_off_position - 0.5 * gravity * flight_time * flight_time) / flight_time;
+  return makeSolution(v, flight_time, gravity);
+}
+
+std::optional<LiftOffVelocity> liftOffVelocityForHorizontalSpeed(const Eigen::Vector3d& lift_off_position,
+                                                                 const Eigen::Vector3d& target, double horizontal_speed,
+                                                                 const Eigen::Vector3d& gravity) {
+  requireFinite(lift_off_position, "lift-off position");
+  requireFinite(target, "target");
+  verticalGravity(gravity, "liftOffVelocityForHorizontalSpeed");
+  if (!(horizontal_speed > 0.0) || !std::isfinite(horizontal_speed)) {
+    throw std::invalid_argument(format(
+        "liftOffVelocityForHorizontalSpeed: horizontal speed %g m/s must be positive and finite", horizontal_speed));
+  }
+  const double h = (target - lift_off_position).head<2>().norm();
+  if (h < 1e-12) return std::nullopt;
+  return liftOffVelocityForFlightTime(lift_off_position, target, h / horizontal_speed, gravity);
+}
+
+// ---------------------------------------------------------------------------
+// The hyperbola of lift-off velocities
+
+LiftOffHyperbola::LiftOffHyperbola(const Eigen::Vector3d& lift_off_position, const Eigen::Vector3d& target,
+                                   const Eigen::Vector3d& gravity)
+    : lift_off_(lift_off_position), target_(target), gravity_(gravity) {
+  requireFinite(lift_off_position, "lift-off position");
+  requireFinite(target, "target");
+  g_ = verticalGravity(gravity, "LiftOffHyperbola");
+  const Eigen::Vector3d delta = target - lift_off_position;
+  h_ = delta.head<2>().norm();
+  dz_ = delta.z();
+  if (h_ < 1e-9) {
+    throw std::invalid_argument(format(
+        "LiftOffHyperbola: target is %g m horizontally from the lift-off point; a vertical jump has no hyperbola "
+        "(use liftOffVelocityForFlightTime)",
+        h_));
+  }
+  u_ = Eigen::Vector3d(delta.x() / h_, delta.y() / h_, 0.0);
+}
+
+double LiftOffHyperbola::verticalSpeed(double horizontal_speed) const {
+  if (!(horizontal_speed > 0.0) || !std::isfinite(horizontal_speed)) {
+    throw std::invalid_argument(
+        format("LiftOffHyperbola: horizontal speed %g m/s must be positive and finite", horizontal_speed));
+  }
+  return dz_ * horizontal_speed / h_ + g_ * h_ / (2.0 * horizontal_speed);
+}
+
+LiftOffVelocity LiftOffHyperbola::atHorizontalSpeed(double horizontal_speed) const {
+  const double vz = verticalSpeed(horizontal_speed);
+  const Eigen::Vector3d v = horizontal_speed * u_ + Eigen::Vector3d(0.0, 0.0, vz);
+  return makeSolution(v, h_ / horizontal_speed, gravity_);
+}
+
+LiftOffVelocity LiftOffHyperbola::atFlightTime(double flight_time) const {
+  if (!(flight_time > 0.0) || !std::isfinite(flight_time)) {
+    throw std::invalid_argument(format("LiftOffHyperbola: flight time %g s must be positive and finite", flight_time));
+  }
+  return atHorizontalSpeed(h_ / flight_time);
+}
+
+double LiftOffHyperbola::minimumElevation() const { return std::atan2(dz_, h_); }
+
+std::optional<LiftOffVelocity> LiftOffHyperbola::atElevation(double elevation) const {
+  if (!std::isfinite(elevation) || elevation <= minimumElevation() || elevation >= kPi / 2.0) return std::nullopt;
+  const double excess = std::tan(elevation) - dz_ / h_;
+  if (!(excess > 0.0)) return std::nullopt;
+  const double s = std::sqrt(g_ * h_ / (2.0 * excess));
+  if (!(s > 0.0) || !std::isfinite(s)) return std::nullopt;
+  return atHorizontalSpeed(s);
+}
+
+LiftOffVelocity LiftOffHyperbola::leastSpeed() const {
+  // tan(theta*) = (dz + R) / h with R = |(h, dz)|, so tan(theta*) - dz/h = R/h and
+  // s^2 = g h^2 / (2 R).
+  const double r = std::hypot(h_, dz_);
+  return atHorizontalSpeed(h_ * std::sqrt(g_ / (2.0 * r)));
+}
+
+// ---------------------------------------------------------------------------
+// Safety check
+
+const char* safetyIssueName(SafetyIssue issue) {
+  switch (issue) {
+    case SafetyIssue::kNone:
+      return "none";
+    case SafetyIssue::kNotFinite:
+      return "not_finite";
+    case SafetyIssue::kApexBelowTarget:
+      return "apex_below_target";
+    case SafetyIssue::kTargetUnreachable:
+      return "target_unreachable";
+    case SafetyIssue::kOutsideWorkspace:
+      return "outside_workspace";
+  }
+  return "unknown";
+}
+
+SafetyVerdict SafetyCheck::operator()(const FlightState& lift_off, const Eigen::Vector3d& target) const {
+  const Eigen::Vector3d& p = lift_off.position;
+  const Eigen::Vector3d& v = lift_off.velocity;
+  if (!finite(p) || !finite(v) || !finite(target)) {
+    return {SafetyIssue::kNotFinite,
+            format("lift-off position (%g, %g, %g) m, velocity (%g, %g, %g) m/s or target (%g, %g, %g) m is not finite",
+                   p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), target.x(), target.y(), target.z())};
+  }
+  const BallisticFlight flight(lift_off, gravity);
+
+  const double apex = flight.apexHeight();
+  if (apex < target.z() + apex_clearance) {
+    return {SafetyIssue::kApexBelowTarget,
+            format("apex at z = %.4f m (lift-off z = %.4f m, v_z = %.4f m/s) is below the target height %.4f m + "
+                   "clearance %.4f m",
+                   apex, p.z(), v.z(), target.z(), apex_clearance)};
+  }
+
+  const auto landing = flight.landingPoint(target.z());
+  if (!landing) {
+    return {SafetyIssue::kTargetUnreachable,
+            format("the CoM never comes back down to the target height %.4f m (apex %.4f m)", target.z(), apex)};
+  }
+  const double miss = (landing->head<2>() - target.head<2>()).norm();
+  if (miss > max_landing_miss) {
+    return {SafetyIssue::kTargetUnreachable,
+            format("the CoM comes down through z = %.4f m at (%.4f, %.4f) m, %.4f m from the target (%.4f, %.4f) m; "
+                   "at most %.4f m is allowed",
+                   target.z(), landing->x(), landing->y(), miss, target.x(), target.y(), max_landing_miss)};
+  }
+
+  if (workspace && !workspace(p)) {
+    return {SafetyIssue::kOutsideWorkspace,
+            format("lift-off position (%.4f, %.4f, %.4f) m is outside the leg workspace", p.x(), p.y(), p.z())};
+  }
+  return {};
+}
+
+}  // namespace pronk::jump
