@@ -36,6 +36,13 @@ struct RunOptions {
 };
 int runCommand(const CommonOptions& common, const RunOptions& options);
 
+// `pronk render`: the video alone. From a trace CSV of an earlier run (body
+// poses recomputed by forward kinematics, no simulation), or by simulating.
+struct RenderOptions : RunOptions {
+  std::string trace;          // trace.csv from `pronk run --out`; "" = simulate
+};
+int renderCommand(const CommonOptions& common, const RenderOptions& options);
+
 struct BenchOptions {
   std::string scenario;       // "" = the built-in Go1 scenario
   int repeats = 3;

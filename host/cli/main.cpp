@@ -40,6 +40,22 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--camera", run.camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
 
+  RenderOptions render;
+  auto* render_cmd = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "
+                                                  "simulating it");
+  render_cmd->add_option("scenario", render.scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  render_cmd->add_option("-o,--output", render.video, "MP4 file to write")->required();
+  render_cmd->add_option("--trace", render.trace, "trace.csv of an earlier `pronk run --out` (no simulation)")
+      ->check(CLI::ExistingFile);
+  render_cmd->add_option("--controller", render.controller, "controller to use instead of the scenario's");
+  render_cmd->add_option("--duration", render.duration, "episode length in s")->check(CLI::PositiveNumber);
+  render_cmd->add_option("--speed", render.speed, "playback speed, e.g. 0.25")->check(CLI::PositiveNumber);
+  render_cmd->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1.0, 240.0));
+  render_cmd->add_option("--size", render.size, "WIDTHxHEIGHT, both even");
+  render_cmd->add_option("--still", render.stills, "also save the frame at this simulated time as a PNG (repeatable)")
+      ->check(CLI::NonNegativeNumber);
+  render_cmd->add_option("--camera", render.camera, "camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
+
   BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "simulation speed and accuracy: default settings vs a converged reference");
   bench_cmd->add_option("--scenario", bench.scenario, "scenario whose robot and settings to measure "
@@ -61,6 +77,7 @@ int main(int argc, char** argv) {
     if (*plugins) return pluginsCommand(common);
     if (*validate) return validateCommand(common, validate_files);
     if (*run_cmd) return runCommand(common, run);
+    if (*render_cmd) return renderCommand(common, render);
     if (*bench_cmd) return benchCommand(common, bench);
   } catch (const pronk::Error& e) {
     std::cerr << "pronk: " << e.what() << "\n";

@@ -97,6 +97,27 @@ TEST(Cli, RunWritesAVideoOfTheHop) {
   EXPECT_EQ(bad.output.find("simulated"), std::string::npos) << bad.output;
 }
 
+TEST(Cli, RenderReplaysARecordedTraceWithoutSimulating) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/replay";
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(pronk("run " + source("scenarios/go1/hop.xml") + " --out " + dir).status, 0);
+  const Outcome o = pronk("render " + source("scenarios/go1/hop.xml") + " -o " + dir + "/replay.mp4 --trace " + dir +
+                          "/trace.csv --size 320x240 --fps 10");
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("no simulation"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("40 frames"), std::string::npos) << o.output;  // 2 s at half speed, 10 fps
+  // A damaged trace is an input error naming the file and line.
+  std::ifstream in(dir + "/trace.csv");
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::ofstream(dir + "/bad.csv") << header << "\n" << row << "\n" << "0.1,abc\n";
+  const Outcome bad = pronk("render " + source("scenarios/go1/hop.xml") + " -o " + dir + "/y.mp4 --trace " + dir +
+                            "/bad.csv");
+  EXPECT_EQ(bad.status, 3) << bad.output;
+  EXPECT_NE(bad.output.find(dir + "/bad.csv:3:"), std::string::npos) << bad.output;
+}
+
 TEST(Cli, NonFootContactFailsTheRunWithStatus4) {
   const auto j = runAndRead(cliScenario("go1_fall.xml"), "go1_fall", 4);
   EXPECT_TRUE(j.at("failed").get<bool>());

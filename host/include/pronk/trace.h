@@ -49,4 +49,12 @@ struct Trace {
 // file cannot be written.
 void writeTraceCsv(const Trace& trace, const std::string& path);
 
+// Reads a CSV written by writeTraceCsv back (samples only: no body poses, no
+// events). Throws InputError("file:line: ...") for a malformed file.
+Trace readTraceCsv(const std::string& path);
+
+// Adds the whole robot's `lift_off` (all feet off) and `touchdown` (a foot back
+// on) events from the samples' contact flags, as the episode runner does.
+void addContactEvents(Trace& trace);
+
 }  // namespace pronk

@@ -15,6 +15,10 @@
 #include "pronk/scenario.h"
 #include "pronk/terrain.h"
 
+namespace SimTK {
+class State;
+}
+
 namespace pronk {
 
 // Everything a controller may read at a control tick (world frame, SI units).
@@ -105,6 +109,10 @@ class World {
   Eigen::MatrixXd legJacobianBase(int foot, const Eigen::VectorXd& q) const;
   // World poses of every description body (for traces and rendering).
   std::vector<Eigen::Isometry3d> bodyPoses() const;
+  // The same for a given base pose and joint positions (any state), and the
+  // foot sphere centres there: re-creates a recorded frame without simulating.
+  std::vector<Eigen::Isometry3d> bodyPosesAt(const Eigen::Vector3d& base_position, const Eigen::Vector4d& base_quaternion,
+                                             const Eigen::VectorXd& q, std::vector<Eigen::Vector3d>* feet = nullptr) const;
 
  private:
   struct Impl;
@@ -113,6 +121,7 @@ class World {
   std::optional<Failure> failure_;
   StepStatistics stats_;
   void readState();
+  std::vector<Eigen::Isometry3d> posesIn(const SimTK::State& state) const;
 };
 
 }  // namespace pronk

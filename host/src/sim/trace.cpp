@@ -1,6 +1,7 @@
 #include "pronk/trace.h"
 
 #include <fstream>
+#include <sstream>
 #include <iomanip>
 
 #include "pronk/error.h"
@@ -32,6 +33,92 @@ void writeTraceCsv(const Trace& trace, const std::string& path) {
     out << '\n';
   }
   if (!out) throw Error(path + ": writing the trace failed");
+}
+
+namespace {
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  return fields;
+}
+
+}  // namespace
+
+Trace readTraceCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError({path, 0}, "cannot open the trace file");
+  std::string line;
+  if (!std::getline(in, line)) throw InputError({path, 1}, "empty trace file");
+  const std::vector<std::string> header = splitCsv(line);
+  Trace trace;
+  for (const std::string& h : header) {
+    if (h.rfind("q_", 0) == 0) trace.joint_names.push_back(h.substr(2));
+    const std::string suffix = "_contact";
+    if (h.size() > suffix.size() && h.compare(h.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      trace.foot_links.push_back(h.substr(0, h.size() - suffix.size()));
+    }
+  }
+  const size_t nj = trace.joint_names.size(), nf = trace.foot_links.size();
+  const size_t expected = 14 + 3 * nj + 4 * nf;
+  if (header.size() != expected || header[0] != "time") {
+    throw InputError({path, 1}, "not a pronk trace header (" + std::to_string(header.size()) + " columns, expected " +
+                                    std::to_string(expected) + ")");
+  }
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    const std::vector<std::string> f = splitCsv(line);
+    if (f.size() != expected) {
+      throw InputError({path, number}, std::to_string(f.size()) + " columns, expected " + std::to_string(expected));
+    }
+    std::vector<double> v(f.size());
+    for (size_t i = 0; i < f.size(); ++i) {
+      size_t used = 0;
+      try {
+        v[i] = std::stod(f[i], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != f[i].size() || f[i].empty()) {
+        throw InputError({path, number}, "column '" + header[i] + "': '" + f[i] + "' is not a number");
+      }
+    }
+    TraceSample s;
+    size_t k = 0;
+    s.time = v[k++];
+    for (int i = 0; i < 3; ++i) s.base_position(i) = v[k++];
+    for (int i = 0; i < 4; ++i) s.base_quaternion(i) = v[k++];
+    for (int i = 0; i < 3; ++i) s.com_position(i) = v[k++];
+    for (int i = 0; i < 3; ++i) s.com_velocity(i) = v[k++];
+    s.q.resize(Eigen::Index(nj));
+    s.qd.resize(Eigen::Index(nj));
+    s.torque.resize(Eigen::Index(nj));
+    for (Eigen::VectorXd* vec : {&s.q, &s.qd, &s.torque})
+      for (size_t i = 0; i < nj; ++i) (*vec)(Eigen::Index(i)) = v[k++];
+    for (size_t ft = 0; ft < nf; ++ft) {
+      s.foot_in_contact.push_back(v[k++] != 0 ? 1 : 0);
+      s.foot_force.emplace_back(v[k], v[k + 1], v[k + 2]);
+      k += 3;
+    }
+    trace.samples.push_back(std::move(s));
+  }
+  if (trace.samples.empty()) throw InputError({path, number}, "the trace has no samples");
+  return trace;
+}
+
+void addContactEvents(Trace& trace) {
+  bool airborne = false;
+  for (size_t i = 1; i < trace.samples.size(); ++i) {
+    bool any = false;
+    for (uint8_t c : trace.samples[i].foot_in_contact) any = any || c;
+    if (!any && !airborne) trace.addEvent(trace.samples[i].time, "lift_off");
+    if (any && airborne) trace.addEvent(trace.samples[i].time, "touchdown");
+    airborne = !any;
+  }
 }
 
 }  // namespace pronk

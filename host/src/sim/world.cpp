@@ -489,9 +489,26 @@ Eigen::MatrixXd World::legJacobianBase(int foot, const Eigen::VectorXd& q) const
   return J;
 }
 
-std::vector<Eigen::Isometry3d> World::bodyPoses() const {
+std::vector<Eigen::Isometry3d> World::bodyPosesAt(const Eigen::Vector3d& base_position,
+                                                  const Eigen::Vector4d& base_quaternion, const Eigen::VectorXd& q,
+                                                  std::vector<Eigen::Vector3d>* feet) const {
   const Impl& w = *impl_;
-  const SimTK::State& s = w.integ->getState();
+  SimTK::State& s = w.scratch;
+  for (int i = 0; i < jointCount(); ++i) s.updQ()[w.q_of[i]] = q(i);
+  const SimTK::Rotation R(SimTK::Quaternion(base_quaternion(0), base_quaternion(1), base_quaternion(2),
+                                            base_quaternion(3)));
+  w.mb.root().setQToFitTransform(s, SimTK::Transform(R, toVec3(base_position)));
+  w.system.realize(s, SimTK::Stage::Position);
+  if (feet) {
+    feet->clear();
+    for (const FootSphere& foot : w.feet)
+      feet->push_back(toEigen(w.matter.getMobilizedBody(foot.body).getBodyTransform(s) * foot.center_body));
+  }
+  return posesIn(s);
+}
+
+std::vector<Eigen::Isometry3d> World::posesIn(const SimTK::State& s) const {
+  const Impl& w = *impl_;
   std::vector<Eigen::Isometry3d> poses;
   for (const SimTK::MobilizedBody& b : w.mb.bodies) {
     const SimTK::Transform& X = b.getBodyTransform(s);
@@ -504,5 +521,7 @@ std::vector<Eigen::Isometry3d> World::bodyPoses() const {
   }
   return poses;
 }
+
+std::vector<Eigen::Isometry3d> World::bodyPoses() const { return posesIn(impl_->integ->getState()); }
 
 }  // namespace pronk

@@ -1,0 +1,73 @@
+// Video settings shared by `pronk run --video` and `pronk render`.
+#include "video_settings.h"
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace pronk::cli {
+
+// Video settings: the scenario's <render> block, then the flags.
+render::VideoOptions videoOptions(const Scenario& scenario, const RunOptions& options) {
+  render::VideoOptions v;
+  if (scenario.render) {
+    const RenderSpec& r = *scenario.render;
+    v.width = r.width;
+    v.height = r.height;
+    v.fps = r.fps;
+    v.speed = r.speed;
+    v.path = r.output;
+    v.camera = r.camera.mode;
+    v.camera_position = Eigen::Vector3d(r.camera.position[0], r.camera.position[1], r.camera.position[2]);
+    v.camera_look_at = Eigen::Vector3d(r.camera.look_at[0], r.camera.look_at[1], r.camera.look_at[2]);
+    v.fovy_deg = r.camera.fovy_deg;
+  }
+  if (!options.video.empty()) v.path = options.video;
+  if (options.speed > 0) v.speed = options.speed;
+  if (options.fps > 0) v.fps = options.fps;
+  if (!options.camera.empty()) v.camera = options.camera;
+  v.stills = options.stills;
+  if (!v.stills.empty() && v.path.empty()) throw Error("--still needs a video (--video FILE or a <render output>)");
+  if (!options.size.empty()) {
+    int w = 0, h = 0;
+    char tail = 0;
+    if (std::sscanf(options.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w <= 0 || h <= 0 || w % 2 || h % 2 ||
+        w > 7680 || h > 4320) {
+      throw Error("--size " + options.size + ": expected WIDTHxHEIGHT, both even, at most 7680x4320");
+    }
+    v.width = w;
+    v.height = h;
+  }
+  return v;
+}
+
+// Fails now, naming the file, if the video cannot be written later.
+void checkWritable(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (ec) throw Error(path + ": cannot create the video's directory: " + ec.message());
+  const bool existed = fs::exists(path, ec);
+  std::ofstream probe(path, std::ios::app);
+  if (!probe) throw Error(path + ": cannot write the video file");
+  probe.close();
+  if (!existed) fs::remove(path, ec);
+}
+
+// The scenario's first target in the world, for the video's marker.
+render::SceneMarkers markersFor(const Scenario& scenario, const World& world, const TraceSample& start) {
+  render::SceneMarkers m;
+  if (scenario.targets.empty()) return m;
+  const TargetSpec& t = scenario.targets.front();
+  const double yaw = scenario.platform.base_yaw;
+  const Eigen::Vector2d offset = Eigen::Rotation2Dd(yaw) * Eigen::Vector2d(t.x, t.y);
+  const auto ground = world.terrain().topAt(start.base_position.x(), start.base_position.y());
+  m.target = Eigen::Vector3d(start.base_position.x() + offset.x(), start.base_position.y() + offset.y(),
+                             (ground ? ground->height : 0.0) + t.z);
+  m.target_yaw = yaw + t.yaw;
+  return m;
+}
+
+}  // namespace pronk::cli
