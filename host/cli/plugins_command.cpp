@@ -45,6 +45,18 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
   int failures = 0;
   for (const std::string& file : files) {
     try {
+      if (isScenarioPart(file)) {
+        // A file meant to be included: check what it holds, and its robot if it has one.
+        const Scenario part = loadScenarioPart(file);
+        std::string robot = "no platform";
+        if (!part.platform.urdf.empty()) {
+          World world(part);
+          robot = world.robot().name + ", " + std::to_string(world.jointCount()) + " joints, " +
+                  std::to_string(world.footCount()) + " feet";
+        }
+        std::printf("ok  %s (part: %s)\n", file.c_str(), robot.c_str());
+        continue;
+      }
       const Scenario scenario = loadScenario(file);
       PluginRegistry registry;
       loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);

@@ -47,8 +47,10 @@ nlohmann::json runAndRead(const std::string& scenario, const std::string& name, 
 
 TEST(Cli, ShippedScenariosValidate) {
   const Outcome o = pronk("validate " + source("scenarios/go1/stand.xml") + " " + source("scenarios/aliengo/stand.xml") +
-                          " " + source("scenarios/go1/terrain_demo.xml") + " " + source("scenarios/go1/hop.xml"));
+                          " " + source("scenarios/go1/terrain_demo.xml") + " " + source("scenarios/go1/hop.xml") +
+                          " " + source("scenarios/platforms/go1.xml") + " " + source("scenarios/platforms/aliengo.xml"));
   EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("part: go1"), std::string::npos) << o.output;
 }
 
 TEST(Cli, Go1StandsWhereForwardKinematicsPutsIt) {

@@ -195,4 +195,10 @@ constexpr int kScenarioFormatVersion = 1;
 // InputError("file:line: message") on the first error.
 Scenario loadScenario(const std::string& path);
 
+// Reads a file meant to be included (root <scenario_part>) on its own, to check
+// it: every element it holds is validated the same way, nothing is required.
+Scenario loadScenarioPart(const std::string& path);
+// True when the file parses and its root element is <scenario_part>.
+bool isScenarioPart(const std::string& path);
+
 }  // namespace pronk

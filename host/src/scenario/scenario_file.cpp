@@ -71,6 +71,9 @@ int majorVersion(const std::string& v) {
 
 class Loader {
  public:
+  // `part`: the file is a <scenario_part> read on its own, to check it:
+  // nothing is required of it.
+  explicit Loader(bool part = false) : part_(part) {}
   Scenario load(const std::string& path);
 
  private:
@@ -93,6 +96,7 @@ class Loader {
   std::vector<Item> items_;                    // top-level elements, includes spliced in
   std::string scenario_name_;
   SourceLocation top_where_;
+  bool part_ = false;
 };
 
 const XMLElement& Loader::open(const fs::path& shown, SourceFile& file, const SourceLocation& missing_at) {
@@ -113,7 +117,7 @@ const XMLElement& Loader::open(const fs::path& shown, SourceFile& file, const So
 }
 
 void Loader::readRoot(const XMLElement& root, SourceFile& file, bool top) {
-  const char* expected = top ? kTopRoot : kPartRoot;
+  const char* expected = top && !part_ ? kTopRoot : kPartRoot;
   if (std::string(root.Name()) != expected) {
     scenario_file::failAt(root, file,
                           top ? "the root element must be <scenario> (a <scenario_part> is meant to be included)"
@@ -130,7 +134,7 @@ void Loader::readRoot(const XMLElement& root, SourceFile& file, bool top) {
   const std::string unit = r.choice("angle", "rad", std::array<const char*, 2>{"rad", "deg"});
   file.angle = unit == "deg" ? AngleUnit::Deg : AngleUnit::Rad;
   if (top) {
-    scenario_name_ = r.text("name", fs::path(file.shown).stem().string());
+    scenario_name_ = part_ ? fs::path(file.shown).stem().string() : r.text("name", fs::path(file.shown).stem().string());
     top_where_ = r.where();
   }
   r.rejectUnknownAttributes();
@@ -190,6 +194,10 @@ void Loader::dispatch(Scenario& scenario) {
     else if (name == "targets") scenario.targets = scenario_file::readTargets(e, f);
     else if (name == "sweeps") scenario.sweeps = scenario_file::readSweeps(e, f);
     else if (name == "render") scenario.render = scenario_file::readRender(e, f);
+  }
+  if (part_) {
+    if (scenario_controller) scenario.platform.controller = *scenario_controller;
+    return;
   }
   if (!first.count("platform")) {
     throw InputError(top_where_, "<scenario>: no <platform> (write one, or include a platform file)");
@@ -257,5 +265,13 @@ Scenario Loader::load(const std::string& path) {
 }  // namespace
 
 Scenario loadScenario(const std::string& path) { return Loader().load(path); }
+
+Scenario loadScenarioPart(const std::string& path) { return Loader(true).load(path); }
+
+bool isScenarioPart(const std::string& path) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || !doc.RootElement()) return false;
+  return std::string(doc.RootElement()->Name()) == kPartRoot;
+}
 
 }  // namespace pronk
