@@ -1,5 +1,7 @@
 #include "method/ballistics.h"
 
+#include "method/string_format.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
@@ -12,14 +14,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buffer, sizeof buffer, fmt, args);
-  va_end(args);
-  return buffer;
-}
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 

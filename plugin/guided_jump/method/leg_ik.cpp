@@ -1,5 +1,7 @@
 #include "method/leg_ik.h"
 
+#include "method/string_format.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -16,14 +18,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 
-__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buffer, sizeof buffer, fmt, args);
-  va_end(args);
-  return buffer;
-}
 
 // (-pi, pi]
 double wrapToPi(double a) {

@@ -1,5 +1,7 @@
 #include "method/reward.h"
 
+#include "method/string_format.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
@@ -10,14 +12,6 @@ namespace pronk::jump {
 
 namespace {
 
-__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buffer, sizeof buffer, fmt, args);
-  va_end(args);
-  return buffer;
-}
 
 void requireSize(Eigen::Index size, Eigen::Index expected, const char* what, int tick) {
   if (size == expected) return;
