@@ -38,6 +38,12 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
   World world(scenario);
   for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
+  if (!scenario.targets.empty() || !scenario.sweeps.empty()) {
+    // Said, not silently skipped: jumping to targets and expanding sweeps come with the jump environment.
+    std::cerr << "note: " << scenario.targets.size() << " target(s) and " << scenario.sweeps.size()
+              << " sweep(s) are not run by `pronk run` yet; one episode of the controller runs (the first target "
+                 "is drawn in videos)\n";
+  }
   Trace events;  // controller events are collected here and merged into the episode trace
   auto controller = makeController(scenario.platform.controller, registry, world, &events);
 
