@@ -1,0 +1,388 @@
+#include "method/planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "method/orientation_trajectory.h"
+
+namespace pronk::jump {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRangeTolerance = 1e-12;  // a value this far outside its range is clamped, not rejected
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+using P = ActionParameter;
+
+[[noreturn]] void configError(const std::string& what) { throw std::invalid_argument("planner config: " + what); }
+
+// One candidate of the rule's search (docs/method-planner.md).
+struct Candidate {
+  double rise = 0.0;
+  double ahead = 0.0;
+  double thrust_duration = 0.0;
+  double yaw_fraction = 0.0;
+};
+
+// The lift-off velocity member of the rule for lift-off point c_e.
+struct Member {
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  bool ok = true;
+  std::string problem;  // when !ok
+};
+
+Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, bool in_place, const PlannerConfig& cfg) {
+  Member m;
+  const double g = -cfg.gravity.z();
+  if (in_place) {
+    const double apex = std::max(c_e.z(), c_tg.z()) + cfg.in_place_apex_rise_m;
+    m.velocity = {0.0, 0.0, std::sqrt(2.0 * g * (apex - c_e.z()))};
+    return m;
+  }
+  const LiftOffHyperbola hyp(c_e, c_tg, cfg.gravity);
+  const ParameterRange& el = cfg.ranges[P::kVelocityElevation];
+  const double h = hyp.horizontalDistance();
+  const double slope = hyp.heightChange() / h;
+  // Least-speed elevation, clamped into the range, kept strictly inside the
+  // hyperbola's open elevation interval.
+  double theta = kPi / 4.0 + std::atan2(hyp.heightChange(), h) / 2.0;
+  theta = std::clamp(theta, el.min, el.max);
+  const double lowest = hyp.minimumElevation() + 1e-9;
+  const double highest = kPi / 2.0 - 1e-9;
+  theta = std::clamp(theta, lowest, highest);
+  // Apex at least min_apex_rise above the lift-off point: v_z >= V. On the
+  // branch above the least-speed elevation v_z grows with tan(theta) = t and
+  // g h t^2 - 2 V^2 t + 2 V^2 slope = 0 gives the elevation where v_z = V.
+  const double V2 = 2.0 * g * cfg.min_apex_rise_m;
+  const double t_now = std::tan(theta);
+  const double vz2_now = g * h * t_now * t_now / (2.0 * (t_now - slope));
+  if (vz2_now < V2) {
+    const double disc = V2 * V2 - 2.0 * g * h * V2 * slope;
+    if (disc >= 0.0) theta = std::max(theta, std::atan((V2 + std::sqrt(disc)) / (g * h)));
+    theta = std::min(theta, highest);
+  }
+  const std::optional<LiftOffVelocity> v = hyp.atElevation(theta);
+  if (!v) {  // cannot happen after the clamps above; kept as a guard
+    m.ok = false;
+    m.problem = "no ballistic solution at the chosen elevation";
+    return m;
+  }
+  m.velocity = v->velocity;
+  return m;
+}
+
+std::string formatRangeProblem(ActionParameter p, double value, const ParameterRange& r) {
+  std::ostringstream msg;
+  msg << actionParameterName(p) << " = " << value << " " << actionParameterUnit(p) << " is outside its range ["
+      << r.min << ", " << r.max << "]";
+  return msg.str();
+}
+
+JumpAction clampToRanges(const JumpAction& a, const ActionRanges& ranges) {
+  ActionVector v = toVector(a);
+  for (int i = 0; i < kActionSize; ++i) {
+    if (!std::isfinite(v[i])) v[i] = 0.5 * (ranges.bounds[i].min + ranges.bounds[i].max);
+    v[i] = std::clamp(v[i], ranges.bounds[i].min, ranges.bounds[i].max);
+  }
+  return fromVector(v);
+}
+
+// Fills the prediction of `plan` from its (possibly clamped) action.
+void predict(PlannedJump& plan, const PlannerConfig& cfg) {
+  const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
+  plan.bezier_lift_off = thrust.bezierLiftOff();
+  plan.lift_off = thrust.liftOff();
+  plan.lift_off_time = thrust.duration();
+  plan.explosive_acceleration = thrust.explosive().accelerationAlongPath();
+  const BallisticFlight flight(FlightState{plan.lift_off.position, plan.lift_off.velocity}, cfg.gravity);
+  plan.apex = flight.apexPoint();
+  plan.apex_time = flight.apexTime();
+  const std::optional<double> t = flight.landingTime(plan.target_com.z());
+  if (t) {
+    plan.flight_time = *t;
+    plan.touchdown_time = plan.lift_off_time + *t;
+    plan.landing_point = *flight.landingPoint(plan.target_com.z());
+  } else {
+    plan.flight_time = plan.touchdown_time = kNaN;
+    plan.landing_point = Eigen::Vector3d::Constant(kNaN);
+  }
+  plan.touchdown_yaw = plan.action.liftoff_rpy_rad.z() + plan.action.liftoff_rpy_rate_radps.z() * plan.flight_time;
+}
+
+// True when every stance foot stays reachable on the whole thrust path.
+bool pathReachable(const PlannedJump& plan, const PlannerConfig& cfg, std::string* where) {
+  const LegWorkspace& ws = *cfg.workspace;
+  const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
+  const OrientationTrajectory orient(Eigen::Vector3d::Zero(), plan.action, thrust.duration());
+  const int n = std::max(ws.path_samples, 1);
+  for (int i = 0; i <= n; ++i) {
+    const double t = thrust.duration() * i / n;
+    const Eigen::Matrix3d R = orient.rotation(t);
+    const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
+    if (!feetReachable(ws.legs, ws.feet, trunk, R, ws.require_within_limits)) {
+      std::ostringstream msg;
+      msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
+          << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+      *where = msg.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+// Plans one candidate. Range problems make it infeasible with a reason; the
+// leg check is done by the caller.
+PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, const Candidate& cand) {
+  const ActionRanges& ranges = cfg.ranges;
+  PlannedJump plan;
+  const Eigen::Vector3d o = cfg.polarOrigin();
+  const Eigen::Vector3d& c0 = cfg.start_com;
+  const double hs = cfg.standingHeight();
+  const Eigen::Vector3d& disp = target.displacement;
+  plan.azimuth_rad = jumpPlaneAzimuth(disp);
+  const Eigen::Vector3d u(std::cos(plan.azimuth_rad), std::sin(plan.azimuth_rad), 0.0);
+  plan.target_com = Eigen::Vector3d(c0.x() + disp.x(), c0.y() + disp.y(), o.z() + disp.z() + hs);
+  const double h_total = std::hypot(disp.x(), disp.y());
+  const bool in_place = h_total < kPureTwistDistance;
+  const double lift_off_z = o.z() + hs + cand.rise;
+
+  const ParameterRange& rv_range = ranges[P::kLiftOffSpeed];
+  const ParameterRange& d_range = ranges[P::kExplosiveDistance];
+  const double rv_cap = std::max(rv_range.min, std::min(cfg.max_bezier_speed_mps, rv_range.max));
+
+  // Lift-off point for the current (theta_v, d) guess.
+  auto liftOffPoint = [&](double theta, double d) {
+    double ahead = 0.0;
+    if (!in_place) ahead = std::min(std::max(cand.ahead, d * std::cos(theta)), 0.5 * h_total);
+    Eigen::Vector3d c = c0 + ahead * u;
+    c.z() = lift_off_z;
+    return c;
+  };
+  // Bezier speed, speed ratio and explosive distance for a lift-off speed.
+  struct Split {
+    double r_v, k, d, d_needed;
+  };
+  auto splitSpeed = [&](double speed) {
+    Split s;
+    s.r_v = std::clamp(speed, rv_range.min, rv_cap);
+    s.k = speed / s.r_v;
+    s.d_needed = std::max(0.0, (speed * speed - s.r_v * s.r_v) / (2.0 * cfg.max_explosive_acceleration));
+    s.d = std::max(d_range.min, s.d_needed);
+    return s;
+  };
+
+  // Fixed point on (theta_v, d): the lift-off point depends on them only
+  // through the offset rule; the ballistic solution below is exact either way.
+  double theta = in_place ? kPi / 2.0 : kPi / 4.0;
+  double d = d_range.min;
+  for (int iter = 0; iter < 200; ++iter) {
+    const Member m = chooseMember(liftOffPoint(theta, d), plan.target_com, in_place, cfg);
+    if (!m.ok) break;
+    const double theta_new = std::atan2(m.velocity.z(), m.velocity.dot(u));
+    const double d_new = std::min(splitSpeed(m.velocity.norm()).d, d_range.max);
+    const bool done = std::abs(theta_new - theta) < 1e-13 && std::abs(d_new - d) < 1e-13;
+    theta = 0.5 * (theta + theta_new);
+    d = 0.5 * (d + d_new);
+    if (done) break;
+  }
+  const Eigen::Vector3d c_e = liftOffPoint(theta, d);
+  const Member m = chooseMember(c_e, plan.target_com, in_place, cfg);
+  const double speed = m.velocity.norm();
+  const Split split = splitSpeed(speed);
+  d = std::min(d, d_range.max);
+  const Eigen::Vector3d v_hat = m.velocity / speed;
+  const Eigen::Vector3d c_b = c_e - d * v_hat;
+  const Eigen::Vector3d rel = c_b - o;
+  const double rel_h = rel.dot(u);
+
+  JumpAction& a = plan.action;
+  a.thrust_duration_s = cand.thrust_duration;
+  a.liftoff_radius_m = std::hypot(rel_h, rel.z());
+  a.liftoff_elevation_rad = std::atan2(rel.z(), rel_h);
+  a.liftoff_speed_mps = speed / split.k;
+  a.velocity_elevation_rad = in_place ? kPi / 2.0 : std::atan2(m.velocity.z(), m.velocity.dot(u));
+  a.speed_ratio = split.k;
+  a.explosive_distance_m = d;
+
+  // Flight time to the target height, for the yaw split.
+  const BallisticFlight flight(FlightState{c_e, m.velocity}, cfg.gravity);
+  const std::optional<double> t_flight = flight.landingTime(plan.target_com.z());
+  const ParameterRange& yaw_r = ranges[P::kLiftOffYaw];
+  const ParameterRange& rate_r = ranges[P::kLiftOffYawRate];
+  double yaw_lo = 0.0, yaw_rate = 0.0;
+  if (target.yaw_rad != 0.0 && t_flight && *t_flight > 0.0) {
+    yaw_lo = std::clamp(cand.yaw_fraction * target.yaw_rad, yaw_r.min, yaw_r.max);
+    yaw_rate = (target.yaw_rad - yaw_lo) / *t_flight;
+    if (yaw_rate > rate_r.max || yaw_rate < rate_r.min) {
+      yaw_rate = std::clamp(yaw_rate, rate_r.min, rate_r.max);
+      yaw_lo = target.yaw_rad - yaw_rate * *t_flight;
+    }
+  } else if (target.yaw_rad != 0.0) {
+    yaw_lo = target.yaw_rad;
+  }
+  a.liftoff_rpy_rad = {0.0, 0.0, yaw_lo};
+  a.liftoff_rpy_rate_radps = {0.0, 0.0, yaw_rate};
+
+  // Feasibility, first failure wins.
+  plan.feasible = true;
+  auto fail = [&](PlanLimit limit, std::optional<ActionParameter> p, const std::string& why) {
+    if (!plan.feasible) return;
+    plan.feasible = false;
+    plan.limit = limit;
+    plan.limiting_parameter = p;
+    plan.reason = why;
+  };
+  if (!m.ok) fail(PlanLimit::kActionRange, P::kVelocityElevation, m.problem);
+  if (!in_place) {
+    const double lowest = std::atan2(plan.target_com.z() - c_e.z(), (plan.target_com - c_e).head<2>().norm());
+    if (ranges[P::kVelocityElevation].max <= lowest) {
+      std::ostringstream msg;
+      msg << "the target needs a lift-off velocity elevation above " << lowest
+          << " rad, beyond the velocity_elevation range max " << ranges[P::kVelocityElevation].max;
+      fail(PlanLimit::kActionRange, P::kVelocityElevation, msg.str());
+    }
+  }
+  if (!t_flight) fail(PlanLimit::kActionRange, P::kVelocityElevation, "the CoM never comes down to the target height");
+  // Parameter ranges, in the order that names the physical cause first.
+  const ActionVector values = toVector(a);
+  const ActionParameter order[] = {P::kSpeedRatio,        P::kLiftOffSpeed,   P::kVelocityElevation,
+                                   P::kExplosiveDistance, P::kLiftOffRadius,  P::kLiftOffElevation,
+                                   P::kThrustDuration,    P::kLiftOffYaw,     P::kLiftOffYawRate,
+                                   P::kLiftOffRoll,       P::kLiftOffPitch,   P::kLiftOffRollRate,
+                                   P::kLiftOffPitchRate};
+  for (ActionParameter p : order) {
+    const double v = values[actionIndex(p)];
+    const ParameterRange& r = ranges[p];
+    if (!(v >= r.min - kRangeTolerance && v <= r.max + kRangeTolerance)) {
+      std::string why = formatRangeProblem(p, v, r);
+      if (p == P::kSpeedRatio && v > r.max) {
+        std::ostringstream msg;
+        msg << "; the lift-off speed " << speed << " m/s exceeds k_max x the Bezier speed cap = " << r.max * rv_cap
+            << " m/s";
+        why += msg.str();
+      }
+      std::ostringstream ctx;
+      ctx << " (lift-off speed " << speed << " m/s at elevation " << a.velocity_elevation_rad << " rad, r_v "
+          << a.liftoff_speed_mps << " m/s, k " << a.speed_ratio << ", d " << a.explosive_distance_m
+          << " m, lift-off CoM " << c_e.transpose() << ")";
+      fail(PlanLimit::kActionRange, p, why + ctx.str());
+    }
+  }
+  if (split.d_needed > d_range.max + kRangeTolerance) {
+    std::ostringstream msg;
+    msg << "lift-off speed " << speed << " m/s from a Bezier speed of " << split.r_v
+        << " m/s needs an explosive distance of " << split.d_needed << " m at the acceleration cap "
+        << cfg.max_explosive_acceleration << " m/s^2, beyond the explosive_distance range max " << d_range.max;
+    fail(PlanLimit::kExplosive, P::kExplosiveDistance, msg.str());
+  }
+  a = clampToRanges(a, ranges);
+  predict(plan, cfg);
+  return plan;
+}
+
+}  // namespace
+
+const char* planLimitName(PlanLimit limit) {
+  switch (limit) {
+    case PlanLimit::kNone: return "none";
+    case PlanLimit::kActionRange: return "action_range";
+    case PlanLimit::kExplosive: return "explosive";
+    case PlanLimit::kLegWorkspace: return "leg_workspace";
+  }
+  return "unknown";
+}
+
+LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
+                               const Eigen::Vector3d& start_com, const Eigen::Vector3d& com_to_trunk) {
+  LegWorkspace ws;
+  ws.legs = legs;
+  ws.com_to_trunk = com_to_trunk;
+  const Eigen::Vector3d trunk = start_com + com_to_trunk;
+  for (int i = 0; i < kLegCount; ++i) ws.feet[i] = trunk + footPosition(legs[i], stance_q);
+  return ws;
+}
+
+double PlannerConfig::standingHeight() const {
+  return std::isnan(standing_com_height) ? start_com.z() : standing_com_height;
+}
+
+Eigen::Vector3d PlannerConfig::polarOrigin() const {
+  return start_com - standingHeight() * Eigen::Vector3d::UnitZ();
+}
+
+void PlannerConfig::check() const {
+  ranges.check();
+  if (!gravity.allFinite() || gravity.x() != 0.0 || gravity.y() != 0.0 || !(gravity.z() < 0.0)) {
+    configError("gravity must be finite and along -z");
+  }
+  if (!start_com.allFinite()) configError("start_com must be finite");
+  if (!(std::isfinite(standingHeight()) && standingHeight() > 0.0)) configError("standing CoM height must be > 0");
+  if (lift_off_rise_m.empty() || lift_off_ahead_m.empty() || thrust_duration_s.empty() ||
+      yaw_at_lift_off_fraction.empty()) {
+    configError("every candidate list needs at least one value");
+  }
+  for (double v : lift_off_ahead_m) {
+    if (!(std::isfinite(v) && v >= 0.0)) configError("lift_off_ahead_m values must be finite and >= 0");
+  }
+  for (double v : lift_off_rise_m) {
+    if (!std::isfinite(v) || standingHeight() + v <= 0.0) configError("lift_off_rise_m values must keep the CoM above the surface");
+  }
+  for (double v : thrust_duration_s) {
+    if (!(std::isfinite(v) && v > 0.0)) configError("thrust_duration_s values must be finite and > 0");
+  }
+  for (double v : yaw_at_lift_off_fraction) {
+    if (!(std::isfinite(v) && v >= 0.0 && v <= 1.0)) configError("yaw_at_lift_off_fraction values must be in [0, 1]");
+  }
+  if (!(std::isfinite(max_bezier_speed_mps) && max_bezier_speed_mps > 0.0)) configError("max_bezier_speed_mps must be > 0");
+  if (!(std::isfinite(max_explosive_acceleration) && max_explosive_acceleration > 0.0)) {
+    configError("max_explosive_acceleration must be > 0");
+  }
+  if (!(std::isfinite(min_apex_rise_m) && min_apex_rise_m >= 0.0)) configError("min_apex_rise_m must be >= 0");
+  if (!(std::isfinite(in_place_apex_rise_m) && in_place_apex_rise_m > 0.0)) configError("in_place_apex_rise_m must be > 0");
+  if (workspace) {
+    for (const LegGeometry& leg : workspace->legs) leg.check();
+    for (const Eigen::Vector3d& f : workspace->feet) {
+      if (!f.allFinite()) configError("workspace feet must be finite");
+    }
+    if (!workspace->com_to_trunk.allFinite()) configError("workspace com_to_trunk must be finite");
+  }
+}
+
+PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
+  config.check();
+  if (!target.displacement.allFinite() || !std::isfinite(target.yaw_rad)) {
+    throw std::invalid_argument("planJump: the target displacement and yaw must be finite");
+  }
+  const ParameterRange& t_range = config.ranges[P::kThrustDuration];
+  std::optional<PlannedJump> first_failure;
+  std::optional<PlannedJump> leg_failure;
+  for (double rise : config.lift_off_rise_m) {
+    for (double ahead : config.lift_off_ahead_m) {
+      for (double duration : config.thrust_duration_s) {
+        for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
+          // Without a yaw change every fraction gives the same plan.
+          if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
+          const Candidate cand{rise, ahead, std::clamp(duration, t_range.min, t_range.max), yaw_fraction};
+          PlannedJump plan = planCandidate(target, config, cand);
+          if (plan.feasible && config.workspace) {
+            std::string where;
+            if (!pathReachable(plan, config, &where)) {
+              plan.feasible = false;
+              plan.limit = PlanLimit::kLegWorkspace;
+              plan.reason = "every candidate lift-off loses a stance foot; the first: " + where;
+              if (!leg_failure) leg_failure = plan;
+              continue;
+            }
+          }
+          if (plan.feasible) return plan;
+          if (!first_failure) first_failure = plan;
+        }
+      }
+    }
+  }
+  return leg_failure ? *leg_failure : *first_failure;
+}
+
+}  // namespace pronk::jump

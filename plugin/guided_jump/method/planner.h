@@ -1,0 +1,142 @@
+// Analytic ballistic jump planner (the CLI's `--policy ballistic`): from a
+// target alone it produces the 13 physical action parameters by physics, with
+// no learning and no simulation. The rule and its equations:
+// docs/method-planner.md.
+//
+// Frame: the start frame S of thrust_trajectory.h (z up, x the initial
+// heading). The polar origin of the action is the take-off surface point
+// directly below the start CoM. Units SI, angles rad.
+//
+// Outline (all exact, closed form except a short fixed-point loop that only
+// picks the rule's parameters, never the ballistic solution itself):
+//   1. target CoM c_tg = (c0_x + x, c0_y + y, surface + z + standing height);
+//   2. actual lift-off CoM c_e in the jump plane, at a chosen height above the
+//      take-off surface and a chosen distance ahead of the start CoM;
+//   3. lift-off velocity v_e on the ballistic hyperbola from c_e to c_tg: the
+//      least-speed member, its elevation clamped into the theta_v range, then
+//      raised (if needed) until the apex clears the lift-off point by
+//      min_apex_rise;
+//   4. Bezier speed r_v = clamp(|v_e|, r_v min, max_bezier_speed), k = |v_e| / r_v,
+//      d = max(d min, (|v_e|^2 - r_v^2) / (2 max_explosive_acceleration));
+//   5. Bezier lift-off c_b = c_e - d v_e / |v_e|, so ThrustPlan's explosive phase
+//      (which ends d along v with speed k |v_b|) lifts off exactly at (c_e, v_e);
+//      r_p, theta_p are c_b's polar coordinates;
+//   6. yaw split: lift-off yaw psi_lo and yaw rate psi_dot with
+//      psi_lo + psi_dot * T_flight = target yaw;
+//   7. when leg geometry is given, the whole thrust path must keep all four
+//      stance feet reachable (feetReachable); a fixed candidate list of
+//      lift-off heights, offsets, thrust durations and yaw splits is searched
+//      in order, and the first feasible candidate wins.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "method/action_mapping.h"
+#include "method/ballistics.h"
+#include "method/explosive_phase.h"
+#include "method/leg_ik.h"
+#include "method/thrust_trajectory.h"
+
+namespace pronk::jump {
+
+// A jump target relative to the start: the landing surface point's displacement
+// from the take-off surface point below the start CoM (x forward, y left, z up,
+// m), and the yaw change (rad).
+struct JumpTarget {
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
+  double yaw_rad = 0.0;
+};
+
+// Stance feet the legs must keep reaching during the thrust.
+struct LegWorkspace {
+  std::array<LegGeometry, kLegCount> legs{};
+  std::array<Eigen::Vector3d, kLegCount> feet{};  // stance feet in S, fixed during the thrust
+  Eigen::Vector3d com_to_trunk = Eigen::Vector3d::Zero();  // trunk centre - CoM, trunk frame, assumed constant
+  int path_samples = 60;  // samples of the thrust path (plus both ends) checked
+  bool require_within_limits = true;
+};
+
+// The workspace of a robot standing at rest with every leg at joint angles
+// `stance_q` (hip, thigh, calf) and the trunk centre at start_com + com_to_trunk
+// (trunk yaw 0): the feet are the forward kinematics of that pose.
+LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
+                               const Eigen::Vector3d& start_com, const Eigen::Vector3d& com_to_trunk);
+
+struct PlannerConfig {
+  ActionRanges ranges = go1ActionRanges();
+  Eigen::Vector3d gravity = standardGravity();  // must be along -z
+  // Start CoM in S. The polar origin is (c0_x, c0_y, c0_z - standing height).
+  // Default: the Go1 whole-body CoM height of the planner prototype.
+  Eigen::Vector3d start_com{0.0, 0.0, 0.3081};
+  // Standing CoM height above the feet (take-off and landing posture). NaN:
+  // start_com.z (the start CoM stands on the surface z = 0).
+  double standing_com_height = std::numeric_limits<double>::quiet_NaN();
+
+  // Rule parameters (defaults in docs/method-planner.md).
+  // Actual lift-off CoM height above standing, m: candidates tried in order.
+  std::vector<double> lift_off_rise_m{0.08, 0.06, 0.04, 0.02, 0.0, -0.02, -0.04};
+  // Nominal horizontal lift-off offset ahead of the start CoM, m (the
+  // prototype's 0.08), capped at half the horizontal target distance; raised to
+  // d cos(theta_v) so that the Bezier lift-off never lies behind the polar origin.
+  std::vector<double> lift_off_ahead_m{0.08, 0.04, 0.0};
+  // Thrust durations tried (clamped into the T_th range).
+  std::vector<double> thrust_duration_s{0.45, 0.4};
+  // Fractions of the target yaw done during the thrust (the rest in flight).
+  std::vector<double> yaw_at_lift_off_fraction{0.5, 0.25, 0.0};
+  double max_bezier_speed_mps = 1.25;        // the prototype's saturation threshold (~1.3 m/s)
+  double max_explosive_acceleration = 20.0;  // m/s^2 along the UARM line
+  double min_apex_rise_m = 0.03;             // apex above the lift-off CoM
+  // Vertical (in-place) jumps: apex this far above max(lift-off, target) CoM height.
+  double in_place_apex_rise_m = 0.10;
+
+  std::optional<LegWorkspace> workspace;  // empty: legs not checked
+
+  double standingHeight() const;            // standing_com_height or start_com.z
+  Eigen::Vector3d polarOrigin() const;      // start_com - standingHeight() e_z
+  // Throws std::invalid_argument naming the field on a bad value.
+  void check() const;
+};
+
+// What stopped a target.
+enum class PlanLimit {
+  kNone,
+  kActionRange,    // a parameter would leave its range (see limiting_parameter)
+  kExplosive,      // the explosive acceleration cap would need d beyond its range
+  kLegWorkspace,   // every candidate loses a foot somewhere on the thrust path
+};
+const char* planLimitName(PlanLimit limit);  // "none", "action_range", "explosive", "leg_workspace"
+
+struct PlannedJump {
+  JumpAction action;  // always within the ranges (clamped when infeasible)
+  double azimuth_rad = 0.0;
+  Eigen::Vector3d target_com = Eigen::Vector3d::Zero();
+
+  PointState bezier_lift_off;  // (c_b, v_b) of ThrustPlan
+  PointState lift_off;         // actual (c_e, v_e) = ThrustPlan::liftOff()
+  double lift_off_time = 0.0;  // T_th + T_e since the thrust starts, s
+  double explosive_acceleration = 0.0;  // m/s^2
+
+  // Ballistic prediction from `lift_off` (NaN when it never comes down to the target height).
+  double flight_time = 0.0;          // lift-off to touchdown, s
+  double touchdown_time = 0.0;       // since the thrust starts, s
+  Eigen::Vector3d landing_point = Eigen::Vector3d::Zero();  // CoM at touchdown height
+  Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+  double apex_time = 0.0;            // since lift-off, s
+  double touchdown_yaw = 0.0;        // psi_lo + psi_dot * flight_time
+
+  bool feasible = false;
+  PlanLimit limit = PlanLimit::kNone;
+  std::optional<ActionParameter> limiting_parameter;
+  std::string reason;  // empty when feasible
+};
+
+// Plans the jump. Never throws for an unreachable target (feasible = false with
+// a reason); throws std::invalid_argument for a non-finite target or a bad config.
+PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config = PlannerConfig());
+
+}  // namespace pronk::jump

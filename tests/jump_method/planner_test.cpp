@@ -1,0 +1,290 @@
+// Analytic ballistic planner: the planned action, run through ThrustPlan (Bezier
+// + explosive phase) and the ballistic flight, must land the CoM on the target;
+// every parameter must stay in its range; out-of-reach targets are reported
+// with a reason.
+#include "method/planner.h"
+
+#include "method/orientation_trajectory.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace pronk::jump {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Go1 standing at (0, 0.75, -1.5) with the prototype's CoM 0.0134 m behind and
+// 0.0036 m below the trunk centre: feet on z = 0.
+const Eigen::Vector3d kStanceQ(0.0, 0.75, -1.5);
+const Eigen::Vector3d kComToTrunk(0.0134, 0.0, 0.0036);
+
+PlannerConfig go1Config(bool with_legs) {
+  PlannerConfig cfg;
+  cfg.start_com = {0.0, 0.0, 0.3081};
+  if (with_legs) cfg.workspace = standingWorkspace(go1Legs(), kStanceQ, cfg.start_com, kComToTrunk);
+  return cfg;
+}
+
+// The CoM where the planned action's actual lift-off state lands, recomputed
+// from the action alone (ThrustPlan, then the ballistic flight).
+Eigen::Vector3d flownLanding(const PlannedJump& plan, const PlannerConfig& cfg, double* vz_at_landing = nullptr) {
+  const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
+  const BallisticFlight flight(FlightState{thrust.liftOff().position, thrust.liftOff().velocity}, cfg.gravity);
+  const std::optional<FlightState> s = flight.landingState(plan.target_com.z());
+  if (!s) return Eigen::Vector3d::Constant(std::nan(""));
+  if (vz_at_landing) *vz_at_landing = s->velocity.z();
+  return s->position;
+}
+
+void expectWithinRanges(const JumpAction& a, const ActionRanges& r) {
+  const ActionVector v = toVector(a);
+  for (int i = 0; i < kActionSize; ++i) {
+    EXPECT_GE(v[i], r.bounds[i].min) << actionParameterName(static_cast<ActionParameter>(i));
+    EXPECT_LE(v[i], r.bounds[i].max) << actionParameterName(static_cast<ActionParameter>(i));
+  }
+}
+
+std::vector<Eigen::Vector3d> sweepGrid() {
+  std::vector<Eigen::Vector3d> grid;
+  for (int ix = 0; ix <= 6; ++ix) {
+    for (int iy = 0; iy <= 4; ++iy) {
+      for (int iz = 0; iz <= 4; ++iz) grid.emplace_back(-0.6 + 0.3 * ix, -0.6 + 0.3 * iy, -0.4 + 0.2 * iz);
+    }
+  }
+  return grid;
+}
+
+TEST(Planner, GridTargetsLandOnTheTargetComWithinANanometre) {
+  const PlannerConfig cfg = go1Config(false);
+  int feasible = 0;
+  for (const Eigen::Vector3d& d : sweepGrid()) {
+    const PlannedJump plan = planJump({d, 0.0}, cfg);
+    SCOPED_TRACE(testing::Message() << "target (" << d.transpose() << ") " << plan.reason);
+    expectWithinRanges(plan.action, cfg.ranges);
+    if (!plan.feasible) {
+      EXPECT_FALSE(plan.reason.empty());
+      EXPECT_TRUE(plan.limiting_parameter.has_value());
+      EXPECT_NE(plan.limit, PlanLimit::kNone);
+      continue;
+    }
+    ++feasible;
+    const Eigen::Vector3d expected = cfg.start_com + d;  // start CoM at standing height
+    EXPECT_LE((plan.target_com - expected).norm(), 1e-15);
+    double vz = 0.0;
+    EXPECT_LE((flownLanding(plan, cfg, &vz) - expected).norm(), 1e-9);
+    EXPECT_LT(vz, 0.0) << "must arrive descending";
+    EXPECT_LE((plan.landing_point - expected).norm(), 1e-9);
+    EXPECT_NEAR(plan.touchdown_time, plan.lift_off_time + plan.flight_time, 1e-12);
+    EXPECT_GE(plan.apex.z(), plan.target_com.z());
+    EXPECT_GE(plan.apex.z(), plan.lift_off.position.z() + cfg.min_apex_rise_m - 1e-12);
+  }
+  // Without legs only the ranges and the caps limit (docs/method-planner.md: 157 of 175).
+  EXPECT_GE(feasible, 150);
+}
+
+TEST(Planner, ExplosivePhaseDeliversTheBallisticLiftOffState) {
+  const PlannerConfig cfg = go1Config(false);
+  const PlannedJump plan = planJump({{1.2, 0.3, 0.0}, 0.0}, cfg);
+  ASSERT_TRUE(plan.feasible) << plan.reason;
+  // A long jump needs more than the Bezier speed cap: the UARM supplies the rest.
+  EXPECT_GT(plan.action.speed_ratio, 1.5);
+  EXPECT_NEAR(plan.action.liftoff_speed_mps, cfg.max_bezier_speed_mps, 1e-12);
+  EXPECT_GT(plan.action.explosive_distance_m, 0.05);
+  const Eigen::Vector3d v_hat = plan.bezier_lift_off.velocity.normalized();
+  EXPECT_LE((plan.bezier_lift_off.position + plan.action.explosive_distance_m * v_hat - plan.lift_off.position).norm(),
+            1e-15);
+  EXPECT_NEAR(plan.lift_off.velocity.norm(), plan.action.speed_ratio * plan.bezier_lift_off.velocity.norm(), 1e-12);
+  EXPECT_LE(plan.explosive_acceleration, cfg.max_explosive_acceleration * (1.0 + 1e-9));
+  EXPECT_GT(plan.explosive_acceleration, 0.5 * cfg.max_explosive_acceleration);
+}
+
+TEST(Planner, UsesTheLeastSpeedMemberWhenItsElevationIsInRange) {
+  const PlannerConfig cfg = go1Config(false);
+  const PlannedJump plan = planJump({{0.6, 0.0, 0.0}, 0.0}, cfg);
+  ASSERT_TRUE(plan.feasible) << plan.reason;
+  const LiftOffHyperbola hyp(plan.lift_off.position, plan.target_com, cfg.gravity);
+  const LiftOffVelocity least = hyp.leastSpeed();
+  EXPECT_LE((plan.lift_off.velocity - least.velocity).norm(), 1e-9);
+  // The lift-off point follows the rule: the prototype's 8 cm ahead and 8 cm up.
+  EXPECT_NEAR(plan.lift_off.position.x(), cfg.start_com.x() + 0.08, 1e-12);
+  EXPECT_NEAR(plan.lift_off.position.z(), cfg.start_com.z() + 0.08, 1e-12);
+}
+
+TEST(Planner, PapersForwardJumpIsFeasibleForGo1WithItsLegs) {
+  for (bool legs : {false, true}) {
+    const PlannerConfig cfg = go1Config(legs);
+    const PlannedJump plan = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
+    SCOPED_TRACE(legs ? "with legs" : "ranges only");
+    ASSERT_TRUE(plan.feasible) << plan.reason;
+    EXPECT_EQ(plan.limit, PlanLimit::kNone);
+    EXPECT_TRUE(plan.reason.empty());
+    EXPECT_NEAR(plan.azimuth_rad, 0.0, 1e-15);
+    EXPECT_LE((flownLanding(plan, cfg) - (cfg.start_com + Eigen::Vector3d(0.4, 0.0, 0.0))).norm(), 1e-9);
+    expectWithinRanges(plan.action, cfg.ranges);
+    if (legs) {
+      // The default 8 cm rise is beyond Go1's straightest knee: the search lowers it.
+      EXPECT_LT(plan.lift_off.position.z(), cfg.start_com.z() + 0.08 - 1e-9);
+    }
+  }
+}
+
+TEST(Planner, ThreeMetreTargetIsInfeasibleWithAReason) {
+  const PlannerConfig cfg = go1Config(false);
+  const PlannedJump plan = planJump({{3.0, 0.0, 0.0}, 0.0}, cfg);
+  EXPECT_FALSE(plan.feasible);
+  EXPECT_EQ(plan.limit, PlanLimit::kActionRange);
+  ASSERT_TRUE(plan.limiting_parameter.has_value());
+  EXPECT_EQ(*plan.limiting_parameter, ActionParameter::kSpeedRatio);
+  EXPECT_NE(plan.reason.find("speed_ratio"), std::string::npos) << plan.reason;
+  expectWithinRanges(plan.action, cfg.ranges);  // clamped, still mappable
+  // The clamped action falls short.
+  EXPECT_LT(plan.landing_point.x(), 3.0 + cfg.start_com.x());
+
+  const PlannerConfig legs = go1Config(true);
+  const PlannedJump with_legs = planJump({{3.0, 0.0, 0.0}, 0.0}, legs);
+  EXPECT_FALSE(with_legs.feasible);
+  EXPECT_FALSE(with_legs.reason.empty());
+}
+
+TEST(Planner, ExplosiveAccelerationCapLimitsWhenTheDistanceRangeIsShort) {
+  PlannerConfig cfg = go1Config(false);
+  cfg.ranges[ActionParameter::kExplosiveDistance] = {0.0, 0.05};
+  const PlannedJump plan = planJump({{1.2, 0.0, 0.0}, 0.0}, cfg);
+  EXPECT_FALSE(plan.feasible);
+  EXPECT_EQ(plan.limit, PlanLimit::kExplosive);
+  EXPECT_EQ(plan.limiting_parameter, ActionParameter::kExplosiveDistance);
+  EXPECT_NE(plan.reason.find("explosive_distance"), std::string::npos) << plan.reason;
+}
+
+TEST(Planner, UpAndDownTargets) {
+  const PlannerConfig cfg = go1Config(false);
+  for (double dz : {0.4, 0.25, -0.25, -0.4}) {
+    for (const Eigen::Vector3d& xy : {Eigen::Vector3d(0.4, 0.0, 0.0), Eigen::Vector3d(0.0, -0.3, 0.0),
+                                      Eigen::Vector3d(-0.3, 0.2, 0.0), Eigen::Vector3d(0.0, 0.0, 0.0)}) {
+      const Eigen::Vector3d d = xy + Eigen::Vector3d(0.0, 0.0, dz);
+      const PlannedJump plan = planJump({d, 0.0}, cfg);
+      SCOPED_TRACE(testing::Message() << "target (" << d.transpose() << ")");
+      ASSERT_TRUE(plan.feasible) << plan.reason;
+      double vz = 0.0;
+      EXPECT_LE((flownLanding(plan, cfg, &vz) - (cfg.start_com + d)).norm(), 1e-9);
+      EXPECT_LT(vz, 0.0);
+      EXPECT_GE(plan.apex.z(), plan.target_com.z());
+      if (dz > 0.0) EXPECT_GT(plan.lift_off.velocity.z(), std::sqrt(2.0 * 9.81 * (plan.target_com.z() - plan.lift_off.position.z())));
+      expectWithinRanges(plan.action, cfg.ranges);
+    }
+  }
+  // Higher targets need more vertical speed.
+  const double vz_up = planJump({{0.4, 0.0, 0.3}, 0.0}, cfg).lift_off.velocity.z();
+  const double vz_flat = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg).lift_off.velocity.z();
+  const double vz_down = planJump({{0.4, 0.0, -0.3}, 0.0}, cfg).lift_off.velocity.z();
+  EXPECT_GT(vz_up, vz_flat);
+  EXPECT_GT(vz_flat, vz_down);
+}
+
+TEST(Planner, YawSplitSumsToTheTargetYaw) {
+  const PlannerConfig cfg = go1Config(false);
+  for (double yaw : {-kPi / 2, -kPi / 4, -0.3, 0.0, 0.2, kPi / 4, kPi / 2}) {
+    for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.3, 0.2, 0.0), Eigen::Vector3d(0.0, 0.0, 0.0),
+                                     Eigen::Vector3d(0.8, -0.4, 0.2)}) {
+      const PlannedJump plan = planJump({d, yaw}, cfg);
+      SCOPED_TRACE(testing::Message() << "yaw " << yaw << " target (" << d.transpose() << ")");
+      ASSERT_TRUE(plan.feasible) << plan.reason;
+      const double yaw_lo = plan.action.liftoff_rpy_rad.z();
+      EXPECT_NEAR(yaw_lo + plan.action.liftoff_rpy_rate_radps.z() * plan.flight_time, yaw, 1e-12);
+      EXPECT_NEAR(plan.touchdown_yaw, yaw, 1e-12);
+      EXPECT_EQ(plan.action.liftoff_rpy_rad.x(), 0.0);
+      EXPECT_EQ(plan.action.liftoff_rpy_rad.y(), 0.0);
+      EXPECT_EQ(plan.action.liftoff_rpy_rate_radps.x(), 0.0);
+      EXPECT_EQ(plan.action.liftoff_rpy_rate_radps.y(), 0.0);
+      if (yaw == 0.0) {
+        EXPECT_EQ(yaw_lo, 0.0);
+      } else {
+        EXPECT_GT(yaw_lo * yaw, 0.0) << "half the yaw during the thrust, same sign";
+      }
+      expectWithinRanges(plan.action, cfg.ranges);
+    }
+  }
+}
+
+TEST(Planner, UnmapThenMapReturnsThePlannedAction) {
+  const PlannerConfig cfg = go1Config(false);
+  for (const JumpTarget& t : {JumpTarget{{0.4, 0.0, 0.0}, 0.0}, JumpTarget{{0.3, 0.2, 0.0}, kPi / 4},
+                              JumpTarget{{-0.6, 0.6, -0.4}, -1.0}, JumpTarget{{0.9, -0.3, 0.2}, 0.5}}) {
+    const PlannedJump plan = planJump(t, cfg);
+    ASSERT_TRUE(plan.feasible) << plan.reason;
+    const ActionVector raw = unmapAction(plan.action, cfg.ranges);
+    for (double a : raw) EXPECT_LE(std::abs(a), cfg.ranges.raw_limit + 1e-12);
+    const MappedAction back = mapAction(raw, cfg.ranges);
+    EXPECT_EQ(back.totalRawExcess(), 0.0);
+    const ActionVector want = toVector(plan.action), got = toVector(back.action);
+    for (int i = 0; i < kActionSize; ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << i;
+  }
+}
+
+TEST(Planner, LegWorkspaceHoldsOnTheWholeThrustPath) {
+  const PlannerConfig cfg = go1Config(true);
+  for (const JumpTarget& t : {JumpTarget{{0.4, 0.0, 0.0}, 0.0}, JumpTarget{{0.3, 0.2, 0.0}, kPi / 4},
+                              JumpTarget{{0.0, 0.0, 0.0}, kPi / 2}}) {
+    const PlannedJump plan = planJump(t, cfg);
+    ASSERT_TRUE(plan.feasible) << plan.reason;
+    const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
+    const OrientationTrajectory orient(Eigen::Vector3d::Zero(), plan.action, thrust.duration());
+    for (int i = 0; i <= 200; ++i) {  // finer than the planner's own check
+      const double time = thrust.duration() * i / 200;
+      const Eigen::Matrix3d R = orient.rotation(time);
+      const Eigen::Vector3d trunk = thrust.position(time) + R * kComToTrunk;
+      EXPECT_TRUE(feetReachable(cfg.workspace->legs, cfg.workspace->feet, trunk, R)) << "t " << time;
+    }
+  }
+}
+
+TEST(Planner, RejectsBadInput) {
+  PlannerConfig cfg = go1Config(false);
+  EXPECT_THROW(planJump({{std::nan(""), 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
+  EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, INFINITY}, cfg), std::invalid_argument);
+  cfg.gravity = {1.0, 0.0, -9.81};
+  EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
+  cfg = go1Config(false);
+  cfg.thrust_duration_s.clear();
+  EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
+}
+
+// The reachable region of docs/method-planner.md: prints which sweep targets
+// are feasible and what limits the rest, ranges only and with Go1's legs.
+TEST(Planner, SweepReachableRegion) {
+  for (bool legs : {false, true}) {
+    const PlannerConfig cfg = go1Config(legs);
+    int feasible = 0, total = 0;
+    std::map<std::string, int> limits;
+    std::string map_text;
+    for (const Eigen::Vector3d& d : sweepGrid()) {
+      const PlannedJump plan = planJump({d, 0.0}, cfg);
+      ++total;
+      if (plan.feasible) {
+        ++feasible;
+        EXPECT_LE((flownLanding(plan, cfg) - (cfg.start_com + d)).norm(), 1e-9);
+      } else {
+        std::string key = planLimitName(plan.limit);
+        if (plan.limiting_parameter) key += std::string(":") + actionParameterName(*plan.limiting_parameter);
+        ++limits[key];
+        char line[160];
+        std::snprintf(line, sizeof line, "  (%+.1f %+.1f %+.1f) %s\n", d.x(), d.y(), d.z(), key.c_str());
+        map_text += line;
+      }
+      expectWithinRanges(plan.action, cfg.ranges);
+    }
+    std::printf("[sweep %s] feasible %d / %d\n", legs ? "go1 legs" : "ranges only", feasible, total);
+    for (const auto& [k, n] : limits) std::printf("  limit %s: %d\n", k.c_str(), n);
+    std::printf("%s", map_text.c_str());
+    EXPECT_GT(feasible, 0);
+  }
+}
+
+}  // namespace
+}  // namespace pronk::jump
