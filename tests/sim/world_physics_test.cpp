@@ -86,6 +86,18 @@ TEST(WorldPhysics, ForwardKinematicsMatchesTheLegGeometry) {
   }
 }
 
+TEST(WorldPhysics, FootForcesMapToTorquesThroughTheJacobianTranspose) {
+  World world = makeWorld(robotUrdf("go1"));
+  world.resetTo(Eigen::Vector3d(0.1, 0.2, 0.5), 0.4, Eigen::VectorXd::LinSpaced(12, -0.3, 0.4), false);
+  const std::vector<int> feet{0, 2, 3};
+  const std::vector<Eigen::Vector3d> forces{{1, 2, 30}, {-3, 0.5, 25}, {0, -1, 40}};
+  Eigen::VectorXd expected = Eigen::VectorXd::Zero(12);
+  for (size_t k = 0; k < feet.size(); ++k) {
+    expected += world.footJacobianWorld(feet[k]).rightCols(12).transpose() * forces[k];
+  }
+  EXPECT_LT((world.footForcesToJointTorques(feet, forces) - expected).norm(), 1e-10);
+}
+
 // Standing height predicted by forward kinematics: feet on the ground, trunk level.
 double predictedStandingHeight(const World& world) {
   const Eigen::Vector3d foot = world.footPositionBase(0, world.initialJointPositions());

@@ -103,6 +103,10 @@ class World {
   // 3 x (6 + joints): d(foot velocity, world)/d(u), u = [base angular velocity
   // (world), base linear velocity (world), joint velocities].
   Eigen::MatrixXd footJacobianWorld(int foot) const;
+  // Joint torques (controller order) J^T f for forces f (world) at the given
+  // feet: what the legs must apply to exert those forces, with the sign of J^T.
+  Eigen::VectorXd footForcesToJointTorques(const std::vector<int>& feet,
+                                           const std::vector<Eigen::Vector3d>& forces) const;
   // Forward kinematics in the trunk frame for joint positions q (any state).
   Eigen::Vector3d footPositionBase(int foot, const Eigen::VectorXd& q) const;
   // d(foot position in trunk frame)/d(q of that leg's joints), 3 x leg size.

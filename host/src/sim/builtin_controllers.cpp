@@ -202,11 +202,10 @@ Eigen::VectorXd gravityCompensation(const World& world, const RobotState& s) {
   Eigen::VectorXd wrench = Eigen::VectorXd::Zero(6);
   wrench.head<3>() = -world.totalMass() * world.gravity();
   const Eigen::VectorXd forces = grasp.completeOrthogonalDecomposition().solve(wrench);
-  for (int k = 0; k < n; ++k) {
-    const Eigen::MatrixXd J = world.footJacobianWorld(feet[k]);
-    // The legs push the ground with -f so that the ground pushes the robot with f.
-    tau -= J.rightCols(world.jointCount()).transpose() * forces.segment<3>(3 * k);
-  }
+  std::vector<Eigen::Vector3d> per_foot;
+  for (int k = 0; k < n; ++k) per_foot.push_back(forces.segment<3>(3 * k));
+  // The legs push the ground with -f so that the ground pushes the robot with f.
+  tau = -world.footForcesToJointTorques(feet, per_foot);
   return tau;
 }
 

@@ -468,6 +468,26 @@ Eigen::MatrixXd World::footJacobianWorld(int foot) const {
   return J;
 }
 
+Eigen::VectorXd World::footForcesToJointTorques(const std::vector<int>& feet,
+                                                const std::vector<Eigen::Vector3d>& forces) const {
+  const Impl& w = *impl_;
+  const SimTK::State& s = w.integ->getState();
+  SimTK::Array_<SimTK::MobilizedBodyIndex> bodies;
+  SimTK::Array_<SimTK::Vec3> stations;
+  SimTK::Vector_<SimTK::Vec3> f(int(feet.size()));
+  for (size_t k = 0; k < feet.size(); ++k) {
+    bodies.push_back(w.feet[feet[k]].body);
+    stations.push_back(w.feet[feet[k]].center_body);
+    f[int(k)] = toVec3(forces[k]);
+  }
+  SimTK::Vector generalized;
+  // O(n) and no Jacobian formed: cheaper than calcStationJacobian per foot.
+  w.matter.multiplyByStationJacobianTranspose(s, bodies, stations, f, generalized);
+  Eigen::VectorXd tau(jointCount());
+  for (int i = 0; i < jointCount(); ++i) tau(i) = generalized[w.u_of[i]];
+  return tau;
+}
+
 Eigen::Vector3d World::footPositionBase(int foot, const Eigen::VectorXd& q) const {
   const Impl& w = *impl_;
   SimTK::State& s = w.scratch;
