@@ -385,4 +385,38 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   return leg_failure ? *leg_failure : *first_failure;
 }
 
+ReplannedJump replanJump(const JumpTarget& target, const PointState& lift_off_error, const PlannerConfig& config,
+                         int max_iterations, double tolerance) {
+  if (!lift_off_error.position.allFinite() || !lift_off_error.velocity.allFinite()) {
+    throw std::invalid_argument("replanJump: the lift-off error must be finite");
+  }
+  if (max_iterations < 1 || !(tolerance > 0.0)) {
+    throw std::invalid_argument("replanJump: max_iterations must be >= 1 and tolerance > 0");
+  }
+  ReplannedJump out;
+  out.commanded = target;
+  out.target_com = planJump(target, config).target_com;
+  for (int i = 0; i < max_iterations; ++i) {
+    out.plan = planJump(out.commanded, config);
+    out.iterations = i + 1;
+    const FlightState achieved{out.plan.lift_off.position + lift_off_error.position,
+                               out.plan.lift_off.velocity + lift_off_error.velocity};
+    const std::optional<Eigen::Vector3d> landed =
+        BallisticFlight(achieved, config.gravity).landingPoint(out.target_com.z());
+    if (!landed) {  // the erroneous state never comes down to the target height
+      out.predicted_landing = Eigen::Vector3d::Constant(kNaN);
+      out.miss = kNaN;
+      out.converged = false;
+      return out;
+    }
+    out.predicted_landing = *landed;
+    const Eigen::Vector2d miss = (out.predicted_landing - out.target_com).head<2>();
+    out.miss = miss.norm();
+    out.converged = out.plan.feasible && out.miss <= tolerance;
+    if (out.miss <= tolerance) break;
+    out.commanded.displacement.head<2>() -= miss;
+  }
+  return out;
+}
+
 }  // namespace pronk::jump

@@ -139,4 +139,23 @@ struct PlannedJump {
 // a reason); throws std::invalid_argument for a non-finite target or a bad config.
 PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config = PlannerConfig());
 
+// Correction for a measured lift-off tracking error (the planner prototype's
+// target-correction scheme): assume the next jump's achieved lift-off state is
+// the planned one plus `lift_off_error` (achieved - planned, position and
+// velocity), and move the commanded horizontal target until that achieved
+// state lands (at the target CoM height) on the real target. Each iteration
+// re-plans with planJump and shifts the command by the remaining miss.
+struct ReplannedJump {
+  PlannedJump plan;              // the plan for `commanded` (its target_com is the commanded one)
+  JumpTarget commanded;          // the shifted target handed to planJump
+  Eigen::Vector3d target_com = Eigen::Vector3d::Zero();         // the real target CoM
+  Eigen::Vector3d predicted_landing = Eigen::Vector3d::Zero();  // of plan.lift_off + error
+  double miss = 0.0;             // |predicted_landing - target_com| (horizontal), m
+  int iterations = 0;
+  bool converged = false;        // miss <= tolerance and the last plan feasible
+};
+ReplannedJump replanJump(const JumpTarget& target, const PointState& lift_off_error,
+                         const PlannerConfig& config = PlannerConfig(), int max_iterations = 50,
+                         double tolerance = 1e-9);
+
 }  // namespace pronk::jump
