@@ -1,26 +1,67 @@
-// Controller `guided_jump`. For now it holds the stance (hold_controller.h);
-// the jump's phases (thrust, flight, landing) come with the jump method.
+// Controller `guided_jump`: with no `action` it holds the stance (hold_controller.h);
+// with an action it jumps: stand, thrust, explosive, flight, descend, landing
+// (jump_phases.h).
+#include <array>
 #include <new>
 
 #include "abi_boundary.h"
 #include "factories.h"
 #include "hold_controller.h"
+#include "jump_phases.h"
 #include "plugin_params.h"
 
 namespace pronk::guided_jump {
 namespace {
 
-constexpr int32_t kParamCount = sizeof(kHoldParamDecls) / sizeof(kHoldParamDecls[0]);
+constexpr int32_t kHoldParamCount = sizeof(kHoldParamDecls) / sizeof(kHoldParamDecls[0]);
+constexpr int32_t kParamCount = kHoldParamCount + 4;
 
-HoldController* self(void* instance) { return static_cast<HoldController*>(instance); }
+// The stance controller's parameters, then the jump's. The action is a vector of
+// any size so that its default can be empty ("no action: hold the stance");
+// create() accepts 0 or 13 numbers.
+std::array<pronk_param_decl, kParamCount> makeParamDecls() {
+  std::array<pronk_param_decl, kParamCount> d{};
+  for (int32_t i = 0; i < kHoldParamCount; ++i) d[i] = kHoldParamDecls[i];
+  d[kHoldParamCount + 0] = {sizeof(pronk_param_decl), "action", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
+                            "empty: hold the stance; or the 13 physical jump parameters T_th r_p theta_p r_v theta_v "
+                            "k d roll pitch yaw roll_rate pitch_rate yaw_rate (s, m, rad, m/s, rad, 1, m, rad, rad/s)"};
+  d[kHoldParamCount + 1] = {sizeof(pronk_param_decl), "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
+                            "standing time before the thrust"};
+  d[kHoldParamCount + 2] = {sizeof(pronk_param_decl), "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "gravity", "",
+                            "thrust feed-forward force: gravity (m g, the paper's) or dynamic (m (a_ref + g))"};
+  d[kHoldParamCount + 3] = {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
+                            "Kp is divided by this from lift-off to touchdown"};
+  return d;
+}
+
+const std::array<pronk_param_decl, kParamCount> kParamDecls = makeParamDecls();
+
+JumpController* self(void* instance) { return static_cast<JumpController*>(instance); }
+
+JumpSettings readJumpSettings(const ParamReader& read) {
+  JumpSettings s;
+  s.hold = readHoldSettings(read);
+  s.action = read.vector("action");
+  s.start_delay = read.real("start_delay");
+  const std::string ff = read.string("feedforward");
+  if (ff == "gravity") {
+    s.feedforward = Feedforward::kGravity;
+  } else if (ff == "dynamic") {
+    s.feedforward = Feedforward::kDynamic;
+  } else {
+    throw InvalidArgument("parameter 'feedforward': '" + ff + "' is neither 'gravity' nor 'dynamic'");
+  }
+  s.flight_kp_division = read.real("flight_kp_division");
+  return s;
+}
 
 pronk_status create(const pronk_host_api* host, const pronk_param_value* params, int32_t param_count,
                     void** instance, char* error, size_t error_size) {
   return guarded(error, error_size, [&] {
     if (!instance) throw InvalidArgument("no instance pointer");
     *instance = nullptr;
-    const ParamReader read(params, param_count, kHoldParamDecls, kParamCount);
-    *instance = new HoldController(host, readHoldSettings(read));
+    const ParamReader read(params, param_count, kParamDecls.data(), kParamCount);
+    *instance = new JumpController(host, readJumpSettings(read));
   });
 }
 
@@ -47,9 +88,10 @@ const pronk_factory kFactory = {
     sizeof(pronk_factory),
     PRONK_FACTORY_CONTROLLER,
     "guided_jump",
-    "guided jump controller; for now holds the stance: joint PD + gravity compensation over the feet in contact",
+    "guided jump controller: with an action, CoM thrust along the paper's Bezier + UARM plan, flight tuck, "
+    "landing; without one, stance PD + gravity compensation over the feet in contact",
     kParamCount,
-    kHoldParamDecls,
+    kParamDecls.data(),
     0,  // any robot with three joints per leg (checked in create)
     0,
     0,

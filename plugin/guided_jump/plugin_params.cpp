@@ -95,4 +95,6 @@ std::vector<double> ParamReader::vector(const char* name) const {
   return out;
 }
 
+std::string ParamReader::string(const char* name) const { return text(decl(name)); }
+
 }  // namespace pronk::guided_jump

@@ -19,6 +19,8 @@ class ParamReader {
   double real(const char* name) const;
   long long integer(const char* name) const;
   std::vector<double> vector(const char* name) const;
+  // The text as given (STRING parameters), or the declared default.
+  std::string string(const char* name) const;
 
  private:
   const pronk_param_decl& decl(const char* name) const;

@@ -1,0 +1,371 @@
+#include "jump_phases.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "abi_boundary.h"
+#include "force_distribution.h"
+#include "method/action_mapping.h"
+
+namespace pronk::guided_jump {
+
+const char* jumpPhaseName(JumpPhase phase) {
+  switch (phase) {
+    case JumpPhase::kHold: return "hold";
+    case JumpPhase::kStand: return "stand";
+    case JumpPhase::kThrust: return "thrust";
+    case JumpPhase::kExplosive: return "explosive";
+    case JumpPhase::kFlight: return "flight";
+    case JumpPhase::kDescend: return "descend";
+    case JumpPhase::kLanding: return "landing";
+  }
+  return "unknown";
+}
+
+double smoothstep(double s) {
+  s = std::clamp(s, 0.0, 1.0);
+  return s * s * (3.0 - 2.0 * s);
+}
+
+Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R) {
+  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
+}
+
+namespace {
+
+Eigen::Matrix3d rotationOf(const pronk_robot_state& s) {
+  return Eigen::Quaterniond(s.base_quaternion[0], s.base_quaternion[1], s.base_quaternion[2], s.base_quaternion[3])
+      .normalized()
+      .toRotationMatrix();
+}
+
+Eigen::Vector3d vec(const double* p) { return {p[0], p[1], p[2]}; }
+
+}  // namespace
+
+JumpController::JumpController(const pronk_host_api* host, const JumpSettings& settings)
+    : host_(host), settings_(settings), hold_(host, settings.hold) {
+  n_ = hold_.jointCount();
+  feet_ = hold_.footCount();
+  if (!host->foot_position_base) throw InvalidArgument("the host API lacks foot_position_base");
+  if (!(settings.flight_kp_division >= 1.0) || !std::isfinite(settings.flight_kp_division)) {
+    throw InvalidArgument("flight_kp_division must be >= 1");
+  }
+  if (!(settings.start_delay >= 0.0) || !std::isfinite(settings.start_delay)) {
+    throw InvalidArgument("start_delay must be >= 0");
+  }
+  if (!settings.action.empty()) {
+    if (settings.action.size() != static_cast<size_t>(jump::kActionSize)) {
+      throw InvalidArgument("parameter 'action' needs " + std::to_string(jump::kActionSize) +
+                            " numbers (T_th r_p theta_p r_v theta_v k d roll pitch yaw roll_rate pitch_rate "
+                            "yaw_rate) or none, got " +
+                            std::to_string(settings.action.size()));
+    }
+    jump::ActionVector v{};
+    std::copy(settings.action.begin(), settings.action.end(), v.begin());
+    action_ = jump::fromVector(v);
+    if (!(action_.thrust_duration_s > 0)) throw InvalidArgument("action: the thrust duration must be > 0");
+    if (!(action_.liftoff_speed_mps > 0)) throw InvalidArgument("action: the lift-off speed must be > 0");
+    if (!(action_.speed_ratio >= 1.0)) throw InvalidArgument("action: k must be >= 1");
+    if (!(action_.explosive_distance_m >= 0.0)) throw InvalidArgument("action: d must be >= 0");
+    // Built once here so that the method's own checks refuse a bad action at create().
+    try {
+      jump::ThrustPlan check(action_, 0.0, Eigen::Vector3d(0, 0, 0.3), Eigen::Vector3d::Zero());
+      jump::OrientationTrajectory o(Eigen::Vector3d::Zero(), action_, check.duration());
+    } catch (const std::invalid_argument& e) {
+      throw InvalidArgument(std::string("action: ") + e.what());
+    }
+    has_action_ = true;
+  }
+  effort_limit_.resize(n_);
+  for (int j = 0; j < n_; ++j) {
+    double effort = std::numeric_limits<double>::infinity();
+    host->joint_limits(host->host, j, nullptr, nullptr, nullptr, &effort);
+    effort_limit_(j) = (std::isfinite(effort) && effort > 0) ? effort : std::numeric_limits<double>::infinity();
+  }
+  mass_ = host->total_mass(host->host);
+  double g[3] = {0, 0, 0};
+  host->gravity(host->host, g);
+  gravity_ = Eigen::Vector3d(g[0], g[1], g[2]);
+  q_ref_ = Eigen::VectorXd::Zero(n_);
+  qd_ref_ = Eigen::VectorXd::Zero(n_);
+  blend_from_ = Eigen::VectorXd::Zero(n_);
+  jacobian_.resize(3, 6 + n_);
+}
+
+void JumpController::enter(JumpPhase phase, double time, const std::string& detail) {
+  phase_ = phase;
+  phase_start_ = time;
+  if (host_->emit_event) {
+    const std::string name = std::string("phase:") + jumpPhaseName(phase);
+    host_->emit_event(host_->host, time, name.c_str(), detail.c_str());
+  }
+}
+
+void JumpController::reset(const pronk_robot_state& state) {
+  hold_.reset(state);  // checks the state, emits "hold"
+  reset_time_ = state.time;
+  phase_start_ = state.time;
+  all_down_seen_ = false;
+  plan_.reset();
+  orientation_.reset();
+  phase_ = has_action_ ? JumpPhase::kStand : JumpPhase::kHold;
+}
+
+void JumpController::startThrust(const pronk_robot_state& s) {
+  const Eigen::Matrix3d R = rotationOf(s);
+  const double yaw0 = std::atan2(R(1, 0), R(0, 0));
+  heading_ = Eigen::AngleAxisd(yaw0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  // The take-off surface: the lowest point of the feet in contact (all feet when none is).
+  double ground = 0, weight = 0;
+  for (int f = 0; f < feet_; ++f) {
+    if (!s.foot_in_contact[f]) continue;
+    const double r = host_->foot_radius ? host_->foot_radius(host_->host, f) : 0.0;
+    ground += s.foot_position[3 * f + 2] - (std::isfinite(r) ? r : 0.0);
+    weight += 1;
+  }
+  if (weight == 0) {
+    for (int f = 0; f < feet_; ++f) ground += s.foot_position[3 * f + 2];
+    weight = feet_;
+  }
+  ground /= weight;
+  origin_ = Eigen::Vector3d(s.com_position[0], s.com_position[1], ground);
+  const Eigen::Vector3d com_start_S(0, 0, s.com_position[2] - ground);
+  plan_ = std::make_unique<jump::ThrustPlan>(action_, 0.0, com_start_S, Eigen::Vector3d::Zero());
+  const Eigen::Vector3d rpy0 = rpyFromRotation(heading_.transpose() * R);
+  orientation_ = std::make_unique<jump::OrientationTrajectory>(rpy0, action_, plan_->duration());
+  thrust_start_ = s.time;
+  for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int f = 0; f < feet_; ++f) centroid += vec(s.foot_position + 3 * f) / feet_;
+  stance_offset_ = R.transpose() * (vec(s.base_position) - centroid);
+  Eigen::VectorXd stance(n_);
+  for (int j = 0; j < n_; ++j) stance(j) = settings_.hold.stance[j % 3];
+  stance_feet_.resize(3, feet_);
+  for (int f = 0; f < feet_; ++f) {
+    double p[3];
+    if (host_->foot_position_base(host_->host, f, stance.data(), p) != PRONK_OK) {
+      throw std::runtime_error("the host has no forward kinematics for foot " + std::to_string(f));
+    }
+    stance_feet_.col(f) = vec(p);
+  }
+  char detail[200];
+  const jump::PointState& lo = plan_->liftOff();
+  std::snprintf(detail, sizeof detail,
+                "T_th %.3f s, T_e %.3f s, lift-off CoM (%.3f, %.3f, %.3f) m, velocity (%.3f, %.3f, %.3f) m/s (start frame)",
+                plan_->bezierDuration(), plan_->explosiveDuration(), lo.position.x(), lo.position.y(), lo.position.z(),
+                lo.velocity.x(), lo.velocity.y(), lo.velocity.z());
+  enter(JumpPhase::kThrust, s.time, detail);
+}
+
+Eigen::Matrix3d JumpController::legJacobian(int foot, const Eigen::VectorXd& q) {
+  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> J;
+  if (host_->leg_jacobian_base(host_->host, foot, q.data(), J.data()) != PRONK_OK) {
+    throw std::runtime_error("the host has no leg Jacobian for foot " + std::to_string(foot));
+  }
+  return J;
+}
+
+Eigen::Vector3d JumpController::legIk(int foot, const Eigen::Vector3d& target) {
+  Eigen::VectorXd q = q_ref_;
+  for (int iteration = 0; iteration < 6; ++iteration) {
+    double p[3];
+    if (host_->foot_position_base(host_->host, foot, q.data(), p) != PRONK_OK) {
+      throw std::runtime_error("the host has no forward kinematics for foot " + std::to_string(foot));
+    }
+    const Eigen::Vector3d e = target - vec(p);
+    if (e.norm() < 1e-6) break;
+    const Eigen::Matrix3d J = legJacobian(foot, q);
+    // Damped least squares: stays bounded near the stretched-leg singularity.
+    constexpr double lambda = 5e-3;
+    const Eigen::Vector3d dq =
+        (J.transpose() * J + lambda * lambda * Eigen::Matrix3d::Identity()).lu().solve(J.transpose() * e);
+    q.segment<3>(3 * foot) += dq.cwiseMax(-0.2).cwiseMin(0.2);
+  }
+  return q.segment<3>(3 * foot);
+}
+
+void JumpController::thrustTorques(const pronk_robot_state& s, double t, double* torque) {
+  const bool running = t <= plan_->duration();
+  const double tc = std::min(t, plan_->duration());
+  const Eigen::Vector3d c_ref = origin_ + heading_ * plan_->position(tc);
+  const Eigen::Vector3d v_ref = running ? Eigen::Vector3d(heading_ * plan_->velocity(tc)) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d a_ref = running ? Eigen::Vector3d(heading_ * plan_->acceleration(tc)) : Eigen::Vector3d::Zero();
+  const Eigen::Matrix3d R_des = heading_ * orientation_->rotation(tc);
+  const Eigen::Vector3d w_ref =
+      running ? Eigen::Vector3d(heading_ * orientation_->angularVelocityWorld(tc)) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d trunk_des = vec(s.base_position) + (c_ref - vec(s.com_position));
+
+  for (int f = 0; f < feet_; ++f) {
+    const Eigen::Vector3d foot = vec(s.foot_position + 3 * f);
+    const Eigen::Vector3d target = R_des.transpose() * (foot - trunk_des);
+    q_ref_.segment<3>(3 * f) = legIk(f, target);
+  }
+  for (int f = 0; f < feet_; ++f) {
+    const Eigen::Vector3d foot = vec(s.foot_position + 3 * f);
+    const Eigen::Vector3d v_rel = R_des.transpose() * (-(v_ref + w_ref.cross(foot - trunk_des)));
+    const Eigen::Matrix3d J = legJacobian(f, q_ref_);
+    constexpr double lambda = 1e-2;
+    qd_ref_.segment<3>(3 * f) =
+        (J.transpose() * J + lambda * lambda * Eigen::Matrix3d::Identity()).lu().solve(J.transpose() * v_rel);
+  }
+  const Eigen::Vector3d acc = settings_.feedforward == Feedforward::kDynamic ? a_ref : Eigen::Vector3d::Zero();
+  jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, torque);
+}
+
+void JumpController::landingReference(const pronk_robot_state& s) {
+  // A level trunk at the stance height over the feet: the trunk frame at the
+  // current yaw, placed over the feet's centroid as it was at the thrust start.
+  // Feet in contact stay where they are (IK); feet in the air take the stance.
+  const Eigen::Matrix3d R = rotationOf(s);
+  const Eigen::Matrix3d R_des = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double ground = 0;
+  int down = 0;
+  for (int f = 0; f < feet_; ++f) {
+    centroid += vec(s.foot_position + 3 * f) / feet_;
+    if (s.foot_in_contact[f]) {
+      ground += s.foot_position[3 * f + 2];
+      ++down;
+    }
+  }
+  Eigen::Vector3d trunk_des = centroid + R_des * stance_offset_;
+  if (down > 0) trunk_des.z() = ground / down + stance_offset_.z();
+  for (int f = 0; f < feet_; ++f) {
+    if (s.foot_in_contact[f] && landing_ik_) {
+      const Eigen::Vector3d target = R_des.transpose() * (vec(s.foot_position + 3 * f) - trunk_des);
+      q_ref_.segment<3>(3 * f) = legIk(f, target);
+    } else {
+      for (int k = 0; k < 3; ++k) q_ref_(3 * f + k) = settings_.hold.stance[k];
+    }
+  }
+  qd_ref_.setZero();
+}
+
+void JumpController::jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref,
+                                  const Eigen::VectorXd& qd_ref, bool gravity, const Eigen::Vector3d& com_acceleration,
+                                  double* torque) {
+  Eigen::Map<const Eigen::VectorXd> q(s.q, n_), qd(s.qd, n_);
+  Eigen::Map<Eigen::VectorXd> tau(torque, n_);
+  tau = kp * (q_ref - q) + settings_.hold.kd * (qd_ref - qd);
+  if (gravity) {
+    std::vector<int> contact;
+    for (int f = 0; f < feet_; ++f) {
+      if (s.foot_in_contact[f]) contact.push_back(f);
+    }
+    if (!contact.empty()) {
+      Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
+      for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
+      const Eigen::Matrix3Xd forces = distributeWrench(points, vec(s.com_position), mass_ * (com_acceleration - gravity_),
+                                                       Eigen::Vector3d::Zero());
+      for (size_t i = 0; i < contact.size(); ++i) {
+        if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
+          throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
+        }
+        tau -= jacobian_.rightCols(n_).transpose() * forces.col(static_cast<Eigen::Index>(i));
+      }
+    }
+  }
+  for (int j = 0; j < n_; ++j) {
+    if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
+    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
+  }
+}
+
+void JumpController::compute(const pronk_robot_state& s, double* torque) {
+  if (!torque) throw InvalidArgument("no torque buffer");
+  if (phase_ == JumpPhase::kHold) {
+    hold_.compute(s, torque);
+    return;
+  }
+  if (s.joint_count != n_ || s.foot_count != feet_ || !s.q || !s.qd || !s.foot_position || !s.foot_in_contact) {
+    hold_.compute(s, torque);  // throws with the details
+    return;
+  }
+  bool any_contact = false, all_contact = true;
+  for (int f = 0; f < feet_; ++f) {
+    any_contact = any_contact || s.foot_in_contact[f];
+    all_contact = all_contact && s.foot_in_contact[f];
+  }
+  if (phase_ == JumpPhase::kLanding) {
+    // The weight goes back on the legs once every foot has touched down: carried by
+    // the first foot alone it would push the robot off again.
+    if (all_contact) all_down_seen_ = true;
+    // The stiffness comes back over kLandingRamp after touchdown: full Kp at the
+    // impact would throw the robot back up.
+    const double a = smoothstep((s.time - phase_start_) / kLandingRamp);
+    const double kp_low = settings_.hold.kp / settings_.flight_kp_division;
+    landingReference(s);
+    int down = 0;
+    for (int f = 0; f < feet_; ++f) down += s.foot_in_contact[f] ? 1 : 0;
+    jointTorques(s, kp_low + a * (settings_.hold.kp - kp_low), q_ref_, qd_ref_,
+                 settings_.hold.gravity_compensation && all_down_seen_ && (down >= 3 || down == feet_),
+                 Eigen::Vector3d::Zero(), torque);
+    return;
+  }
+
+  if (phase_ == JumpPhase::kStand) {
+    if (s.time - reset_time_ < settings_.start_delay - 1e-9) {
+      hold_.compute(s, torque);
+      return;
+    }
+    startThrust(s);
+  }
+  if (phase_ == JumpPhase::kThrust || phase_ == JumpPhase::kExplosive) {
+    const double t = s.time - thrust_start_;
+    if (!any_contact) {
+      for (int j = 0; j < n_; ++j) blend_from_(j) = s.q[j];
+      char detail[160];
+      const Eigen::Vector3d v = heading_.transpose() * vec(s.com_velocity);
+      std::snprintf(detail, sizeof detail, "%.3f s into the thrust (plan %.3f s); CoM velocity (%.3f, %.3f, %.3f) m/s (start frame)",
+                    t, plan_->duration(), v.x(), v.y(), v.z());
+      enter(JumpPhase::kFlight, s.time, detail);
+    } else if (t > plan_->duration() + kLiftOffWait) {
+      enter(JumpPhase::kLanding, s.time, "no lift-off: the jump is abandoned");
+      phase_start_ -= kLandingRamp;  // nothing to absorb: full gains at once
+      all_down_seen_ = true;
+      return compute(s, torque);
+    } else {
+      if (phase_ == JumpPhase::kThrust && t > plan_->bezierDuration() && plan_->explosiveDuration() > 0) {
+        enter(JumpPhase::kExplosive, s.time);
+      }
+      thrustTorques(s, t, torque);
+      return;
+    }
+  }
+  const double kp_flight = settings_.hold.kp / settings_.flight_kp_division;
+  if (phase_ == JumpPhase::kFlight || phase_ == JumpPhase::kDescend) {
+    if (any_contact) {
+      enter(JumpPhase::kLanding, s.time);
+      all_down_seen_ = false;
+      return compute(s, torque);
+    }
+    if (phase_ == JumpPhase::kFlight && s.com_velocity[2] < 0.0) {
+      const double a = smoothstep((s.time - phase_start_) / kBlendTime);
+      for (int j = 0; j < n_; ++j) blend_from_(j) = blend_from_(j) + a * (settings_.tuck[j % 3] - blend_from_(j));
+      enter(JumpPhase::kDescend, s.time);
+    }
+    const double a = smoothstep((s.time - phase_start_) / kBlendTime);
+    Eigen::VectorXd goal(n_);
+    if (phase_ == JumpPhase::kFlight) {
+      for (int j = 0; j < n_; ++j) goal(j) = settings_.tuck[j % 3];
+    } else {
+      // The landing pose: the stance feet as they would be under a level trunk, so
+      // that a pitched or rolled trunk still lands on all four feet together.
+      const Eigen::Matrix3d R = rotationOf(s);
+      const Eigen::Matrix3d level = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, R.transpose() * level * stance_feet_.col(f));
+    }
+    q_ref_ = blend_from_ + a * (goal - blend_from_);
+    qd_ref_.setZero();
+    jointTorques(s, kp_flight, q_ref_, qd_ref_, false, Eigen::Vector3d::Zero(), torque);
+  }
+}
+
+}  // namespace pronk::guided_jump

@@ -1,0 +1,118 @@
+// The guided jump as a phase machine around the stance controller (hold_controller.h):
+//
+//   stand      0 .. start_delay          stance PD + gravity compensation (HoldController)
+//   thrust     Bezier part of the ThrustPlan (T_th)      } the whole-body CoM follows the plan,
+//   explosive  UARM part of the ThrustPlan (T_e)         } the trunk orientation the Euler Bezier
+//   flight     from lift-off (all feet off the ground): 0.1 s smoothstep to a tucked pose, Kp / division,
+//              no gravity compensation
+//   descend    from the apex (CoM v_z < 0): 0.1 s smoothstep back to the stance, same gains
+//   landing    from touchdown (any foot in contact): joint PD towards a level trunk at the stance
+//              height over the feet (IK for the feet in contact, the stance joints for the others),
+//              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation (feet in
+//              contact) once every foot has touched down
+//
+// Thrust and explosive (t = time since the thrust began). The plan lives in the
+// start frame S: origin on the ground below the CoM at the thrust start, z up, x
+// along the trunk's heading then. Each tick, with c_ref = plan(t) in the world:
+//   trunk_des = trunk + (c_ref - c)            (the state's CoM-to-trunk offset)
+//   R_des     = Rz(yaw_0) R(rpy_ref(t))
+//   foot_des  = R_des^T (p_foot - trunk_des)   per leg, trunk frame (the feet stay put)
+//   q_ref     = IK(foot_des)                    Newton steps on the host's leg kinematics
+//   qd_ref    = J(q_ref)^-1 R_des^T (-(v_ref + w_ref x (p_foot - trunk_des)))
+//   tau       = Kp (q_ref - q) + Kd (qd_ref - qd) - sum_contact J_i^T f_i, clamped
+// with f = G^+ (m (a - g), 0): a = 0 for feedforward "gravity" (the paper's), a = a_ref
+// for "dynamic". After the plan has ended the reference stays at its end point (no
+// velocity) until lift-off; without lift-off within kLiftOffWait the jump is abandoned
+// and the controller lands (stance) in place.
+//
+// Every phase change is an event "phase:<name>" through host->emit_event.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hold_controller.h"
+#include "method/explosive_phase.h"
+#include "method/orientation_trajectory.h"
+#include "pronk/plugin_abi.h"
+
+namespace pronk::guided_jump {
+
+enum class Feedforward { kGravity, kDynamic };
+
+struct JumpSettings {
+  HoldSettings hold;                 // gains, stance (= landing pose), gravity compensation
+  std::vector<double> action;        // empty: hold the stance; else 13 physical numbers (ActionParameter order)
+  double start_delay = 0.2;          // s of standing before the thrust
+  Feedforward feedforward = Feedforward::kGravity;
+  double flight_kp_division = 3.0;   // Kp in flight and descent = kp / this
+  std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
+};
+
+enum class JumpPhase { kHold, kStand, kThrust, kExplosive, kFlight, kDescend, kLanding };
+const char* jumpPhaseName(JumpPhase phase);  // "hold", "stand", "thrust", ...
+
+// Cubic smoothstep 3 s^2 - 2 s^3 of s clamped to [0, 1].
+double smoothstep(double s);
+
+// ZYX Euler angles (roll, pitch, yaw) of a rotation R = Rz(yaw) Ry(pitch) Rx(roll).
+Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R);
+
+class JumpController {
+ public:
+  static constexpr double kBlendTime = 0.1;     // s, tuck and extension smoothsteps
+  static constexpr double kLiftOffWait = 0.15;  // s after the plan's end before giving up on lift-off
+  static constexpr double kLandingRamp = 0.3;   // s from touchdown until Kp is fully back
+
+  // Throws InvalidArgument for an action of the wrong size or one the method rejects.
+  JumpController(const pronk_host_api* host, const JumpSettings& settings);
+
+  void reset(const pronk_robot_state& state);
+  void compute(const pronk_robot_state& state, double* torque);
+
+  JumpPhase phase() const { return phase_; }
+  bool jumping() const { return has_action_; }
+
+ private:
+  void enter(JumpPhase phase, double time, const std::string& detail = "");
+  void startThrust(const pronk_robot_state& s);
+  void landingReference(const pronk_robot_state& s);
+  void thrustTorques(const pronk_robot_state& s, double t, double* torque);
+  void jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref, const Eigen::VectorXd& qd_ref,
+                    bool gravity, const Eigen::Vector3d& com_acceleration, double* torque);
+  // Newton steps on the host's leg kinematics from q_ref_'s current values.
+  Eigen::Vector3d legIk(int foot, const Eigen::Vector3d& foot_base);
+  Eigen::Matrix3d legJacobian(int foot, const Eigen::VectorXd& q);
+
+  const pronk_host_api* host_;
+  JumpSettings settings_;
+  HoldController hold_;
+  bool has_action_ = false;
+  jump::JumpAction action_;
+  int n_ = 0;
+  int feet_ = 0;
+  double mass_ = 0;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  Eigen::VectorXd effort_limit_;
+
+  JumpPhase phase_ = JumpPhase::kHold;
+  double reset_time_ = 0;
+  double phase_start_ = 0;
+  double thrust_start_ = 0;
+  bool all_down_seen_ = false;  // landing: every foot has touched down
+  std::unique_ptr<jump::ThrustPlan> plan_;
+  std::unique_ptr<jump::OrientationTrajectory> orientation_;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // S origin, world
+  Eigen::Matrix3d heading_ = Eigen::Matrix3d::Identity();  // S -> world rotation
+  Eigen::VectorXd q_ref_, qd_ref_, blend_from_;
+  Eigen::Vector3d stance_offset_ = Eigen::Vector3d::Zero();  // trunk - feet centroid at the thrust start, trunk frame
+  bool landing_ik_ = true;
+  Eigen::Matrix3Xd stance_feet_;  // feet at the stance joints, trunk frame
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;
+};
+
+}  // namespace pronk::guided_jump

@@ -1,0 +1,184 @@
+// The guided_jump controller's jump phases through the plugin ABI, on the fake
+// robot of fake_robot.h: parameters, the phase events in order, the stand and
+// landing phases being the stance controller, the flight phase's reduced
+// stiffness without gravity compensation. (The jump itself, with Simbody, is in
+// tests/cli/guided_jump_cli_test.cpp.)
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fake_robot.h"
+#include "pronk/plugin_registry.h"
+
+namespace pronk {
+namespace {
+
+using test::FakeRobot;
+using ::testing::HasSubstr;
+
+// T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates: straight up.
+const char* const kVerticalAction = "0.45 0.38 1.5708 1.6 1.5708 1 0 0 0 0 0 0 0";
+
+class GuidedJumpPhases : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const PluginLibrary& lib = registry_.load(PRONK_GUIDED_JUMP_PLUGIN);
+    path_ = lib.path();
+    factory_ = registry_.find(PRONK_FACTORY_CONTROLLER, "guided_jump");
+    ASSERT_NE(factory_, nullptr);
+    // The fake robot has no forward kinematics; give it a linear one that agrees
+    // with its constant leg Jacobians: foot = (hip corner) + A_f q_leg.
+    api_ = robot_.api();
+    api_.foot_position_base = [](void*, int32_t f, const double* q, double p[3]) {
+      if (f < 0 || f >= FakeRobot::kFeet) return PRONK_ERROR_INVALID_ARGUMENT;
+      const Eigen::Vector3d corner((f < 2 ? 0.2 : -0.2), (f % 2 == 0 ? -0.12 : 0.12), -0.3);
+      const Eigen::Vector3d v = corner + FakeRobot::legJacobian(f) * Eigen::Map<const Eigen::Vector3d>(q + 3 * f);
+      for (int i = 0; i < 3; ++i) p[i] = v(i);
+      return PRONK_OK;
+    };
+  }
+
+  std::unique_ptr<ControllerInstance> make(const std::vector<ParamSetting>& settings) {
+    return std::make_unique<ControllerInstance>(*factory_, path_, api_,
+                                                resolveParams(*factory_, settings, {"test.xml", 1}));
+  }
+
+  Eigen::VectorXd torques(ControllerInstance& c, const pronk_robot_state& s) {
+    Eigen::VectorXd tau = Eigen::VectorXd::Constant(robot_.jointCount(), 1e9);
+    c.compute(s, tau.data());
+    return tau;
+  }
+
+  std::vector<std::string> eventNames() const {
+    std::vector<std::string> names;
+    for (const auto& e : robot_.events) names.push_back(e.name);
+    return names;
+  }
+
+  PluginRegistry registry_;
+  std::string path_;
+  const pronk_factory* factory_ = nullptr;
+  FakeRobot robot_;
+  pronk_host_api api_{};
+};
+
+TEST_F(GuidedJumpPhases, JumpParametersHaveDefaults) {
+  const ResolvedParams p = resolveParams(*factory_, {}, {"test.xml", 1});
+  EXPECT_EQ(*p.find("action"), "");
+  EXPECT_EQ(*p.find("start_delay"), "0.2");
+  EXPECT_EQ(*p.find("feedforward"), "gravity");
+  EXPECT_EQ(*p.find("flight_kp_division"), "3");
+}
+
+TEST_F(GuidedJumpPhases, ActionOfTheWrongSizeIsRefused) {
+  try {
+    make({{"action", "0.45 0.38 1.5708", {}}});
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_THAT(e.what(), HasSubstr("'action' needs 13 numbers"));
+  }
+}
+
+TEST_F(GuidedJumpPhases, UnknownFeedforwardIsRefused) {
+  try {
+    make({{"feedforward", "magic", {}}});
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_THAT(e.what(), HasSubstr("neither 'gravity' nor 'dynamic'"));
+  }
+}
+
+TEST_F(GuidedJumpPhases, WithoutAnActionItOnlyHolds) {
+  auto c = make({});
+  c->reset(robot_.state());
+  for (double t : {0.0, 0.3, 1.0}) {
+    robot_.time = t;
+    torques(*c, robot_.state());
+  }
+  EXPECT_EQ(eventNames(), std::vector<std::string>{"hold"});
+}
+
+TEST_F(GuidedJumpPhases, PhasesFollowTheContacts) {
+  auto jump = make({{"action", kVerticalAction, {}}});
+  auto hold = make({});
+  robot_.q() = {0.1, 0.7, -1.4, -0.1, 0.8, -1.5, 0.0, 0.9, -1.6, 0.05, 0.75, -1.5};
+  jump->reset(robot_.state());
+  hold->reset(robot_.state());
+
+  // Standing until start_delay: the stance controller's torques, no phase yet.
+  robot_.time = 0.1;
+  const Eigen::VectorXd stand = torques(*jump, robot_.state());
+  EXPECT_TRUE(stand.isApprox(torques(*hold, robot_.state()), 1e-12));
+  EXPECT_EQ(eventNames(), (std::vector<std::string>{"hold", "hold"}));
+
+  robot_.events.clear();
+  robot_.time = 0.2;
+  const Eigen::VectorXd thrust = torques(*jump, robot_.state());
+  EXPECT_TRUE(thrust.allFinite());
+  ASSERT_EQ(eventNames(), std::vector<std::string>{"phase:thrust"});
+  EXPECT_DOUBLE_EQ(robot_.events[0].time, 0.2);
+  robot_.time = 0.4;
+  EXPECT_TRUE(torques(*jump, robot_.state()).allFinite());
+
+  // All feet off: flight, with the reference starting at the measured joints.
+  robot_.contact().fill(0);
+  robot_.time = 0.6;
+  const Eigen::VectorXd flight0 = torques(*jump, robot_.state());
+  EXPECT_EQ(eventNames(), (std::vector<std::string>{"phase:thrust", "phase:flight"}));
+  EXPECT_LT(flight0.norm(), 1e-9);  // q_ref = q, qd = 0, no gravity compensation
+  // After the 0.1 s blend: Kp / 3 towards the tuck (0, 1.38, -2.4).
+  robot_.time = 0.75;
+  const Eigen::VectorXd tucked = torques(*jump, robot_.state());
+  const double tuck[3] = {0.0, 1.38, -2.4};
+  for (int j = 0; j < robot_.jointCount(); ++j) EXPECT_NEAR(tucked(j), 100.0 / 3.0 * (tuck[j % 3] - robot_.q()[j]), 1e-9);
+
+  // CoM falling: descend towards the stance (here the trunk is level, so the stance joints).
+  pronk_robot_state falling = robot_.state();
+  falling.com_velocity[2] = -0.1;
+  robot_.time = 0.8;
+  falling.time = 0.8;
+  torques(*jump, falling);
+  EXPECT_EQ(eventNames().back(), "phase:descend");
+  falling.time = 0.95;
+  const Eigen::VectorXd extended = torques(*jump, falling);
+  const double stance[3] = {0.0, 0.75, -1.5};
+  for (int j = 0; j < robot_.jointCount(); ++j) {
+    EXPECT_NEAR(extended(j), 100.0 / 3.0 * (stance[j % 3] - robot_.q()[j]), 1e-4);  // IK to the level stance
+  }
+
+  // One foot down: landing. The legs in the air keep the stance at Kp / 3 (the
+  // stiffness ramps back from touchdown on), with no gravity compensation until
+  // every foot is down.
+  robot_.contact()[2] = 1;
+  robot_.time = 1.0;
+  const Eigen::VectorXd landing = torques(*jump, robot_.state());
+  EXPECT_TRUE(landing.allFinite());
+  for (int j : {0, 1, 2, 3, 4, 5, 9, 10, 11}) {
+    EXPECT_NEAR(landing(j), 100.0 / 3.0 * (stance[j % 3] - robot_.q()[j]), 1e-9) << j;
+  }
+  // All feet down and the ramp over: full Kp with gravity compensation, finite.
+  robot_.contact().fill(1);
+  robot_.time = 1.5;
+  EXPECT_TRUE(torques(*jump, robot_.state()).allFinite());
+  EXPECT_EQ(eventNames(),
+            (std::vector<std::string>{"phase:thrust", "phase:flight", "phase:descend", "phase:landing"}));
+}
+
+TEST_F(GuidedJumpPhases, NoLiftOffAbandonsTheJump) {
+  auto jump = make({{"action", kVerticalAction, {}}, {"start_delay", "0", {}}});
+  jump->reset(robot_.state());
+  for (int k = 0; k <= 700; ++k) {
+    robot_.time = 0.001 * k;
+    torques(*jump, robot_.state());
+  }
+  ASSERT_EQ(eventNames().back(), "phase:landing");
+  EXPECT_THAT(robot_.events.back().detail, HasSubstr("no lift-off"));
+  EXPECT_NEAR(robot_.events.back().time, 0.45 + 0.15, 2e-3);
+}
+
+}  // namespace
+}  // namespace pronk
