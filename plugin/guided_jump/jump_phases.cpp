@@ -238,7 +238,7 @@ void JumpController::landingReference(const pronk_robot_state& s) {
   Eigen::Vector3d trunk_des = centroid + R_des * stance_offset_;
   if (down > 0) trunk_des.z() = ground / down + stance_offset_.z();
   for (int f = 0; f < feet_; ++f) {
-    if (s.foot_in_contact[f] && landing_ik_) {
+    if (s.foot_in_contact[f]) {
       const Eigen::Vector3d target = R_des.transpose() * (vec(s.foot_position + 3 * f) - trunk_des);
       q_ref_.segment<3>(3 * f) = legIk(f, target);
     } else {
@@ -330,7 +330,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       enter(JumpPhase::kLanding, s.time, "no lift-off: the jump is abandoned");
       phase_start_ -= kLandingRamp;  // nothing to absorb: full gains at once
       all_down_seen_ = true;
-      return compute(s, torque);
+      compute(s, torque);
+      return;
     } else {
       if (phase_ == JumpPhase::kThrust && t > plan_->bezierDuration() && plan_->explosiveDuration() > 0) {
         enter(JumpPhase::kExplosive, s.time);
@@ -344,7 +345,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     if (any_contact) {
       enter(JumpPhase::kLanding, s.time);
       all_down_seen_ = false;
-      return compute(s, torque);
+      compute(s, torque);
+      return;
     }
     if (phase_ == JumpPhase::kFlight && s.com_velocity[2] < 0.0) {
       const double a = smoothstep((s.time - phase_start_) / kBlendTime);

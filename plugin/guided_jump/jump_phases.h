@@ -25,6 +25,10 @@
 // velocity) until lift-off; without lift-off within kLiftOffWait the jump is abandoned
 // and the controller lands (stance) in place.
 //
+// The descent's landing pose is the stance's feet placed under a level trunk (IK
+// against the trunk's measured roll and pitch), so that a trunk that rotated in the
+// air still lands on all four feet together.
+//
 // Every phase change is an event "phase:<name>" through host->emit_event.
 #pragma once
 
@@ -110,7 +114,6 @@ class JumpController {
   Eigen::Matrix3d heading_ = Eigen::Matrix3d::Identity();  // S -> world rotation
   Eigen::VectorXd q_ref_, qd_ref_, blend_from_;
   Eigen::Vector3d stance_offset_ = Eigen::Vector3d::Zero();  // trunk - feet centroid at the thrust start, trunk frame
-  bool landing_ik_ = true;
   Eigen::Matrix3Xd stance_feet_;  // feet at the stance joints, trunk frame
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;
 };
