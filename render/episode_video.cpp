@@ -44,7 +44,12 @@ std::vector<PhaseSpan> phasesOf(const Trace& trace) {
       touchdown = &e;
       break;
     }
-  std::vector<PhaseSpan> spans{{"thrust", 0, lift_off->time}};
+  // A controller that names its thrust start (phase:thrust) stood before it.
+  const TraceEvent* thrust = trace.findEvent("phase:thrust");
+  const double thrust_start = thrust && thrust->time < lift_off->time ? thrust->time : 0.0;
+  std::vector<PhaseSpan> spans;
+  if (thrust_start > 0) spans.push_back({"stance", 0, thrust_start});
+  spans.push_back({"thrust", thrust_start, lift_off->time});
   if (!touchdown) {
     spans.push_back({"flight", lift_off->time, end});
   } else {
@@ -54,20 +59,46 @@ std::vector<PhaseSpan> phasesOf(const Trace& trace) {
   return spans;
 }
 
-VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
-                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress) {
-  if (trace.samples.empty() || trace.samples.front().body_poses.empty()) {
-    throw Error(options.path + ": the trace holds no body poses to render");
+struct EpisodeVideo::Impl {
+  VideoOptions options;
+  std::ostream* progress;
+  VideoEncoder encoder;
+  TextOverlay big, small;
+  VideoSummary summary;
+  std::chrono::steady_clock::time_point start_wall = std::chrono::steady_clock::now();
+  int episodes = 0;
+  Impl(const VideoOptions& o, std::ostream* p)
+      : options(o),
+        progress(p),
+        encoder(o.path, o.width, o.height, o.fps),
+        big(std::max(12, o.height / 20), true),
+        small(std::max(10, o.height / 36)) {
+    summary.path = o.path;
   }
+};
+
+EpisodeVideo::EpisodeVideo(const VideoOptions& options, std::ostream* progress) {
   if (!(options.speed > 0) || !std::isfinite(options.speed)) {
     throw Error(options.path + ": playback speed must be positive (0.25 = slow motion)");
   }
+  impl_ = std::make_unique<Impl>(options, progress);
+}
+
+EpisodeVideo::~EpisodeVideo() = default;
+
+void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
+                       const SceneMarkers& markers, const std::string& title) {
+  const VideoOptions& options = impl_->options;
+  if (trace.samples.empty() || trace.samples.front().body_poses.empty()) {
+    throw Error(options.path + ": the trace holds no body poses to render");
+  }
+  VideoEncoder& encoder = impl_->encoder;
+  TextOverlay& big = impl_->big;
+  TextOverlay& small = impl_->small;
+  VideoSummary& summary = impl_->summary;
   const auto start_wall = std::chrono::steady_clock::now();
-  VideoSummary summary;
-  summary.path = options.path;
-  VideoEncoder encoder(options.path, options.width, options.height, options.fps);
+  const bool first_episode = impl_->episodes++ == 0;
   SceneRenderer renderer(options.width, options.height, robot, terrain, &summary.warnings);
-  TextOverlay big(std::max(12, options.height / 20), true), small(std::max(10, options.height / 36));
 
   const double sim_duration = trace.samples.back().time;
   const int frames = std::max(1, int(std::lround(sim_duration / options.speed * options.fps)));
@@ -95,7 +126,7 @@ VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robo
     FrameState frame{s.body_poses, s.foot_position, s.foot_in_contact};
     renderer.render(camera, markers, frame, rgba);
 
-    // Overlay: phase badge, time, timeline, and the landing error at the end.
+    // Overlay: phase badge, time, title, timeline, and the landing error at the end.
     std::string phase = phases.front().name;
     for (const PhaseSpan& p : phases)
       if (t >= p.begin - 1e-9) phase = p.name;
@@ -103,8 +134,9 @@ VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robo
     const int badge_w = big.measure(phase) + 2 * pad;
     fillRect(rgba, options.width, options.height, pad, pad, badge_w, big.lineHeight() + pad, phaseColour(phase), 0.9);
     big.draw(rgba, options.width, options.height, 2 * pad, pad + pad / 3, phase, {1, 1, 1});
-    char text[128];
-    std::snprintf(text, sizeof text, "t = %.3f s%s", t, options.speed != 1 ? "   (slow motion)" : "");
+    char text[160];
+    std::snprintf(text, sizeof text, "t = %.3f s%s%s%s", t, options.speed != 1 ? "   (slow motion)" : "",
+                  title.empty() ? "" : "   ", title.c_str());
     small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2, text, {0.1, 0.1, 0.12});
     if (markers.target) {
       std::snprintf(text, sizeof text, "target (%.2f, %.2f, %.2f) m", markers.target->x(), markers.target->y(),
@@ -120,14 +152,20 @@ VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robo
     const int cursor = bar_x + int(bar_w * t / sim_duration);
     fillRect(rgba, options.width, options.height, cursor - 1, bar_y - pad / 2, 3, bar_h + pad, {0.05, 0.05, 0.05});
     if (markers.target && i == frames - 1) {
-      const Eigen::Vector3d& end = trace.samples.back().com_position;
-      std::snprintf(text, sizeof text, "landing error %.1f cm", 100 * (end - *markers.target).head<2>().norm());
+      double error = 0;
+      if (markers.landing_error) {
+        error = *markers.landing_error;
+      } else {
+        error = (trace.samples.back().com_position - *markers.target).head<2>().norm();
+      }
+      std::snprintf(text, sizeof text, "landing error %.1f cm", 100 * error);
       big.draw(rgba, options.width, options.height, options.width / 2 - big.measure(text) / 2, options.height / 2 -
                                                                                                    big.lineHeight(),
                text, {0.6, 0.05, 0.05});
     }
     encoder.addFrame(rgba);
     for (double still : options.stills) {
+      if (!first_episode) break;  // still times are those of the first episode
       // The frame whose time is nearest the requested one.
       const int wanted = int(std::lround(std::clamp(still, 0.0, sim_duration) / options.speed * options.fps));
       if (std::min(wanted, frames - 1) != i) continue;
@@ -139,21 +177,36 @@ VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robo
     }
 
     const auto now = std::chrono::steady_clock::now();
-    if (progress && (std::chrono::duration<double>(now - last_report).count() > 1.0 || i + 1 == frames)) {
+    if (impl_->progress && (std::chrono::duration<double>(now - last_report).count() > 1.0 || i + 1 == frames)) {
       last_report = now;
       const double elapsed = std::chrono::duration<double>(now - start_wall).count();
       const double rate = (i + 1) / std::max(elapsed, 1e-9);
-      *progress << "video: frame " << (i + 1) << "/" << frames << ", " << std::lround(rate) << " fps, ETA "
-                << std::lround((frames - i - 1) / rate) << " s\n";
+      *impl_->progress << "video: " << (title.empty() ? "" : title + ": ") << "frame " << (i + 1) << "/" << frames
+                       << ", " << std::lround(rate) << " fps, ETA " << std::lround((frames - i - 1) / rate) << " s\n";
     }
   }
+}
+
+VideoSummary EpisodeVideo::finish() {
+  VideoEncoder& encoder = impl_->encoder;
+  VideoSummary& summary = impl_->summary;
   encoder.finish();
   summary.frames = encoder.frames();
-  summary.duration_s = frames / options.fps;
+  summary.duration_s = summary.frames / impl_->options.fps;
   std::error_code ec;
-  summary.bytes = std::filesystem::file_size(options.path, ec);
-  summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_wall).count();
+  summary.bytes = std::filesystem::file_size(impl_->options.path, ec);
+  summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - impl_->start_wall).count();
   return summary;
+}
+
+VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
+                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress) {
+  if (trace.samples.empty() || trace.samples.front().body_poses.empty()) {
+    throw Error(options.path + ": the trace holds no body poses to render");
+  }
+  EpisodeVideo video(options, progress);
+  video.add(trace, robot, terrain, markers, "");
+  return video.finish();
 }
 
 }  // namespace pronk::render

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -42,6 +43,28 @@ struct PhaseSpan {
   double begin = 0, end = 0;
 };
 std::vector<PhaseSpan> phasesOf(const Trace& trace);
+
+// Several episodes one after another in one video (e.g. one jump per target).
+// Frames stream to the encoder as they are drawn.
+class EpisodeVideo {
+ public:
+  // Opens the output. Throws Error for an unwritable path, a bad size, fps or speed.
+  EpisodeVideo(const VideoOptions& options, std::ostream* progress);
+  ~EpisodeVideo();
+  EpisodeVideo(const EpisodeVideo&) = delete;
+  EpisodeVideo& operator=(const EpisodeVideo&) = delete;
+
+  // Appends the frames of one episode (its trace must hold body poses); `title`
+  // is shown beside the time. Stills (VideoOptions::stills) come from the first episode.
+  void add(const Trace& trace, const RobotDescription& robot, const Terrain& terrain, const SceneMarkers& markers,
+           const std::string& title);
+  // Flushes the encoder and closes the file.
+  VideoSummary finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Renders the trace (which must hold body poses). `progress` gets one line per
 // second of work (frames, fps, ETA); nullptr for silence. Throws Error for an

@@ -29,6 +29,7 @@ struct SceneMarkers {
   double target_yaw = 0;                        // rad
   std::vector<Eigen::Vector3d> planned_arc;     // polyline, world
   std::optional<Eigen::Vector3d> predicted_landing;
+  std::optional<double> landing_error;          // m, shown at the end (default: CoM to target, horizontal)
 };
 
 // Colours the tests look for.

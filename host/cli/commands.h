@@ -33,6 +33,9 @@ struct RunOptions {
   std::string size;           // "WxH"; "" = the scenario's (default 1280x720)
   std::string camera;         // side | follow | top | fixed; "" = the scenario's
   std::vector<double> stills; // simulated times to save as PNG beside the video
+  std::string policy;         // "ballistic" or a policy file; "" = the scenario's <environment policy>
+  std::string sweep;          // run this sweep's cases instead of the targets
+  bool video_per_jump = false;  // one video file per jump instead of one for all
 };
 int runCommand(const CommonOptions& common, const RunOptions& options);
 

@@ -39,6 +39,29 @@ const pronk_factory& findFactory(const ControllerSpec& spec, const PluginRegistr
 
 }  // namespace
 
+const pronk_factory& findEnvironment(const EnvironmentSpec& spec, const PluginRegistry& registry) {
+  const pronk_factory* factory = registry.find(PRONK_FACTORY_ENVIRONMENT, spec.factory);
+  if (!factory) {
+    std::string known;
+    for (const auto& lib : registry.libraries())
+      for (const pronk_factory* f : lib->factories())
+        if (f->kind == PRONK_FACTORY_ENVIRONMENT) known += (known.empty() ? "" : ", ") + std::string(f->name);
+    throw InputError(spec.where, "no environment named '" + spec.factory + "' in the loaded plugins" +
+                                     (known.empty() ? std::string(" (none has one)") : "; known: " + known));
+  }
+  if (!spec.plugin.empty()) {
+    const PluginLibrary* library = registry.libraryOf(factory);
+    const bool by_path = spec.plugin.find('/') != std::string::npos;
+    const std::string wanted = by_path ? std::filesystem::path(spec.plugin).filename().string() : spec.plugin;
+    const std::string have = by_path ? std::filesystem::path(library->path()).filename().string() : library->name();
+    if (wanted != have) {
+      throw InputError(spec.where, "environment '" + spec.factory + "' comes from " + library->path() +
+                                       " (plugin '" + library->name() + "'), not from plugin '" + spec.plugin + "'");
+    }
+  }
+  return *factory;
+}
+
 void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths,
                  const ControllerSpec* controller) {
   std::vector<std::string> entries;

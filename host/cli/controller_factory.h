@@ -24,4 +24,8 @@ void checkController(const ControllerSpec& spec, const PluginRegistry& registry)
 std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const PluginRegistry& registry,
                                            const World& world, Trace* trace);
 
+// The scenario's environment factory; throws InputError at the element for an
+// unknown name or a library other than the one it names.
+const pronk_factory& findEnvironment(const EnvironmentSpec& spec, const PluginRegistry& registry);
+
 }  // namespace pronk::cli

@@ -39,6 +39,11 @@ int main(int argc, char** argv) {
                                              "(repeatable)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--camera", run.camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
+  run_cmd->add_option("--policy", run.policy,
+                      "jump to the scenario's targets with this policy: 'ballistic' (the environment's analytic "
+                      "planner) or a policy file (default: the scenario's <environment policy>)");
+  run_cmd->add_option("--sweep", run.sweep, "run the cases of this <sweeps> entry instead of the targets");
+  run_cmd->add_flag("--video-per-jump", run.video_per_jump, "one video file per jump (NAME-000.mp4 ...) instead of one");
 
   RenderOptions render;
   auto* render_cmd = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "

@@ -62,9 +62,15 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
       loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
       World world(scenario);  // reads the URDF, checks the feet, legs and joint names
       for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
-      checkController(scenario.platform.controller, registry);
-      std::printf("ok  %s (%s, %d joints, %d feet, %zu targets)\n", file.c_str(), world.robot().name.c_str(),
-                  world.jointCount(), world.footCount(), scenario.targets.size());
+      if (!scenario.platform.controller.factory.empty()) checkController(scenario.platform.controller, registry);
+      std::string environment;
+      if (scenario.environment) {
+        const pronk_factory& env = findEnvironment(*scenario.environment, registry);
+        resolveParams(env, scenario.environment->params, scenario.environment->where);
+        environment = std::string(", environment ") + env.name;
+      }
+      std::printf("ok  %s (%s, %d joints, %d feet, %zu targets%s)\n", file.c_str(), world.robot().name.c_str(),
+                  world.jointCount(), world.footCount(), scenario.targets.size(), environment.c_str());
     } catch (const Error& e) {
       std::cerr << e.what() << "\n";
       ++failures;

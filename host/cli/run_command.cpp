@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "controller_factory.h"
+#include "jump_runs.h"
 #include "pronk/episode.h"
 #include "pronk/world.h"
 #include "render/episode_video.h"
@@ -30,6 +31,15 @@ double peakFootForce(const Trace& trace) {
 
 int runCommand(const CommonOptions& common, const RunOptions& options) {
   Scenario scenario = loadScenario(options.scenario);
+  if (runsJumps(scenario, options)) return runJumps(common, options, scenario);
+  if (!options.policy.empty() || !options.sweep.empty()) {
+    throw Error(std::string(options.policy.empty() ? "--sweep" : "--policy") + ": " + options.scenario +
+                (scenario.environment ? " runs its controller here (--controller replaces the environment)"
+                                      : " has no <environment> for a policy to drive"));
+  }
+  if (scenario.platform.controller.factory.empty()) {
+    throw Error("--controller: " + options.scenario + " has no <controller>; name one (e.g. --controller stand)");
+  }
   if (!options.controller.empty()) {
     scenario.platform.controller = ControllerSpec{options.controller, "", {}, {"--controller", 0}};
   }
@@ -39,10 +49,10 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   World world(scenario);
   for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
   if (!scenario.targets.empty() || !scenario.sweeps.empty()) {
-    // Said, not silently skipped: jumping to targets and expanding sweeps come with the jump environment.
+    // Said, not silently skipped: targets and sweeps need an environment and a policy.
     std::cerr << "note: " << scenario.targets.size() << " target(s) and " << scenario.sweeps.size()
-              << " sweep(s) are not run by `pronk run` yet; one episode of the controller runs (the first target "
-                 "is drawn in videos)\n";
+              << " sweep(s) need an <environment> and --policy; one episode of the controller runs (the first "
+                 "target is drawn in videos)\n";
   }
   Trace events;  // controller events are collected here and merged into the episode trace
   auto controller = makeController(scenario.platform.controller, registry, world, &events);

@@ -1,50 +1,194 @@
-// Environment `jump`: one episode is one jump towards a target, with one action
-// per episode (the paper's 13 jump parameters, reference-implementation.md s2).
+// Environment `jump`: one episode is one jump to a target, driven by one action
+// (the paper's 13 jump parameters).
 //   observation (6): the target x, y, z (m), yaw, roll, pitch (rad), relative to
 //                    the start, in the robot's initial heading frame;
-//   action (13):     T_th, lift-off position (elevation, radius), lift-off
-//                    velocity (elevation, speed), lift-off roll, pitch, yaw and
-//                    their rates, UARM multiplier k and explosive distance d;
-//   reward:          the paper's landing term exp(-e / sigma_e), e the horizontal
-//                    distance between the CoM's start-relative displacement and
-//                    the target.
-// PARTIAL: the action is checked and stored but does not drive the robot yet;
-// step() holds the stance with the guided_jump hold controller. The thrust,
-// flight and landing phases come with the jump method.
+//   action (13):     the policy's raw outputs, clipped to +-raw_limit and mapped
+//                    affinely onto the action ranges (method/action_mapping.h);
+//   act():           the safety filter runs before anything moves: a thrust path
+//                    that loses a foot's reach, or a flight whose apex stays
+//                    below the target, is rejected (PRONK_REJECTED, with why);
+//   step():          the guided_jump phase machine (jump_phases.h);
+//   finish():        the paper's reward with every term reported as a metric
+//                    (method/reward.h), plus the plan's predictions;
+//   prior_action():  the analytic ballistic planner (method/planner.h) as raw
+//                    outputs: `pronk run --policy ballistic`.
+// The frame of the reward and the plan is the controller's start frame S (origin
+// on the ground below the CoM at the thrust start, x along the heading then).
 #include <array>
 #include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "abi_boundary.h"
 #include "factories.h"
-#include "hold_controller.h"
-#include "landing_reward.h"
+#include "host_leg_geometry.h"
+#include "jump_phases.h"
+#include "method/action_mapping.h"
+#include "method/ballistics.h"
+#include "method/orientation_trajectory.h"
+#include "method/planner.h"
+#include "method/reward.h"
+#include "method/string_format.h"
 #include "plugin_params.h"
 
 namespace pronk::guided_jump {
 namespace {
 
 constexpr int32_t kObservationSize = 6;
-constexpr int32_t kActionSize = 13;
+constexpr int32_t kActionSize = jump::kActionSize;
+constexpr double kRestSpeed = 0.05;  // m/s: the CoM is at rest below this
+
+// The action was refused before the episode ran: PRONK_REJECTED.
+class Rejected : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string rangeText(bool upper) {
+  const jump::ActionRanges r = jump::go1ActionRanges();
+  std::string text;
+  for (int i = 0; i < kActionSize; ++i) {
+    text += (i ? " " : "") + jump::format("%.15g", upper ? r.bounds[i].max : r.bounds[i].min);
+  }
+  return text;
+}
 
 const std::vector<pronk_param_decl>& paramDecls() {
+  static const std::string range_min = rangeText(false), range_max = rangeText(true);
   static const std::vector<pronk_param_decl> decls = [] {
-    std::vector<pronk_param_decl> d = {
+    std::vector<pronk_param_decl> d(std::begin(kHoldParamDecls), std::end(kHoldParamDecls));
+    const std::vector<pronk_param_decl> own = {
         {sizeof(pronk_param_decl), "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s",
-         "episode length: step() ends the episode at this time"},
+         "episode length, from reset"},
+        {sizeof(pronk_param_decl), "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
+         "standing time before the thrust"},
+        {sizeof(pronk_param_decl), "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "dynamic", "",
+         "thrust feed-forward force: gravity (m g, the paper's) or dynamic (m (a_ref + g))"},
+        {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
+         "Kp is divided by this from lift-off to touchdown"},
+        {sizeof(pronk_param_decl), "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
+         "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
+         "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
+        {sizeof(pronk_param_decl), "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_max.c_str(), "SI",
+         "upper ends of the 13 action ranges"},
+        {sizeof(pronk_param_decl), "raw_limit", PRONK_PARAM_REAL, 0, 0.01, 100.0, 0, "5", "",
+         "raw policy outputs are clipped to +-this before the affine map"},
+        {sizeof(pronk_param_decl), "friction_coefficient", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.8", "",
+         "mu of the reward's friction-cone term"},
+        {sizeof(pronk_param_decl), "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 2, "0.15 0.40", "m",
+         "trunk height band of the reward's workspace term (Aliengo: 0.20 0.60)"},
         {sizeof(pronk_param_decl), "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
          "sigma_e of the landing reward exp(-e / sigma_e)"},
+        {sizeof(pronk_param_decl), "apex_clearance", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
+         "safety filter: the CoM apex must clear the target's standing CoM height by this"},
+        {sizeof(pronk_param_decl), "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
+         "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
     };
-    d.insert(d.end(), std::begin(kHoldParamDecls), std::end(kHoldParamDecls));
+    d.insert(d.end(), own.begin(), own.end());
     return d;
   }();
   return decls;
 }
 
+struct EnvironmentSettings {
+  JumpSettings jump;
+  double duration = 1.5;
+  jump::ActionRanges ranges;
+  jump::RewardSettings reward;
+  double apex_clearance = 0.0;
+  bool workspace_check = true;
+};
+
+EnvironmentSettings readSettings(const ParamReader& read) {
+  EnvironmentSettings s;
+  s.jump.hold = readHoldSettings(read);
+  s.jump.start_delay = read.real("start_delay");
+  const std::string ff = read.string("feedforward");
+  if (ff == "gravity") {
+    s.jump.feedforward = Feedforward::kGravity;
+  } else if (ff == "dynamic") {
+    s.jump.feedforward = Feedforward::kDynamic;
+  } else {
+    throw InvalidArgument("parameter 'feedforward': '" + ff + "' is neither 'gravity' nor 'dynamic'");
+  }
+  s.jump.flight_kp_division = read.real("flight_kp_division");
+  s.duration = read.real("duration");
+  const std::vector<double> lo = read.vector("action_min"), hi = read.vector("action_max");
+  for (int i = 0; i < kActionSize; ++i) s.ranges.bounds[i] = {lo[i], hi[i]};
+  s.ranges.raw_limit = read.real("raw_limit");
+  try {
+    s.ranges.check();
+  } catch (const std::invalid_argument& e) {
+    throw InvalidArgument(std::string("parameters 'action_min' / 'action_max': ") + e.what());
+  }
+  s.reward.friction_coefficient = read.real("friction_coefficient");
+  const std::vector<double> band = read.vector("workspace_z");
+  s.reward.workspace_z_min = band[0];
+  s.reward.workspace_z_max = band[1];
+  s.reward.error_scale = read.real("error_scale");
+  s.reward.raw_action_limit = s.ranges.raw_limit;
+  s.apex_clearance = read.real("apex_clearance");
+  s.workspace_check = read.integer("workspace_check") != 0;
+  return s;
+}
+
+Eigen::Vector3d vec(const double* p) { return {p[0], p[1], p[2]}; }
+
+Eigen::Quaterniond quaternionOf(const pronk_robot_state& s) {
+  return Eigen::Quaterniond(s.base_quaternion[0], s.base_quaternion[1], s.base_quaternion[2], s.base_quaternion[3])
+      .normalized();
+}
+
+double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+
+
+Eigen::Matrix3d rotationZYX(double roll, double pitch, double yaw) {
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+// A frame on the take-off surface: origin below the CoM, x along the trunk's heading.
+struct StartFrame {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();      // world
+  Eigen::Matrix3d heading = Eigen::Matrix3d::Identity();  // S -> world
+  Eigen::Vector3d point(const double* world) const { return heading.transpose() * (vec(world) - origin); }
+  Eigen::Vector3d direction(const double* world) const { return heading.transpose() * vec(world); }
+};
+
 class JumpEnvironment {
  public:
-  JumpEnvironment(const pronk_host_api* host, const HoldSettings& hold, double duration, double error_scale)
-      : hold_(host, hold), duration_(duration), error_scale_(error_scale) {}
+  JumpEnvironment(const pronk_host_api* host, const EnvironmentSettings& settings)
+      : host_(host), settings_(settings) {
+    HoldController check(host, settings.jump.hold);  // throws for a robot the controller cannot drive
+    n_ = check.jointCount();
+    feet_ = check.footCount();
+    std::string why;
+    legs_ = legGeometryFromHost(host, &why);
+    if (!legs_ && settings.workspace_check && host->log) {
+      host->log(host->host, 1, ("jump: no analytic leg model (" + why + "); the planner and the safety filter do "
+                                "not check the leg workspace")
+                                   .c_str());
+    }
+    double g[3] = {0, 0, 0};
+    host->gravity(host->host, g);
+    gravity_ = vec(g);
+    limits_.position_min.resize(n_);
+    limits_.position_max.resize(n_);
+    limits_.velocity_max.resize(n_);
+    for (int j = 0; j < n_; ++j) {
+      double lo = 0, hi = 0, v = 0;
+      host->joint_limits(host->host, j, &lo, &hi, &v, nullptr);
+      limits_.position_min(j) = lo;
+      limits_.position_max(j) = hi;
+      limits_.velocity_max(j) = std::isfinite(v) && v > 0 ? v : 1e9;
+    }
+    if (host->foot_radius) settings_.reward.foot_radius = host->foot_radius(host->host, 0);
+  }
 
   void reset(const double* task, int32_t task_size, const pronk_robot_state& state, double* observation) {
     if (!task || task_size != kObservationSize) {
@@ -54,53 +198,294 @@ class JumpEnvironment {
     for (int i = 0; i < kObservationSize; ++i) {
       if (!std::isfinite(task[i])) throw InvalidArgument("task number " + std::to_string(i) + " is not finite");
     }
-    hold_.reset(state);
+    if (state.joint_count != n_ || state.foot_count != feet_) throw InvalidArgument("the state does not fit the robot");
     for (int i = 0; i < kObservationSize; ++i) task_[i] = observation[i] = task[i];
-    com_start_ = Eigen::Vector3d(state.com_position[0], state.com_position[1], state.com_position[2]);
-    start_yaw_ = yawOf(state.base_quaternion);
+    reset_time_ = state.time;
+    start_ = frameAt(state);
+    const Eigen::Matrix3d R = quaternionOf(state).toRotationMatrix();
+    standing_height_ = state.com_position[2] - start_.origin.z();
+    com_to_trunk_ = R.transpose() * (vec(state.base_position) - vec(state.com_position));
+    for (int f = 0; f < feet_ && f < jump::kLegCount; ++f) start_feet_[f] = start_.point(state.foot_position + 3 * f);
+    controller_.reset();
+    action_.reset();
+    record_ = jump::JumpRecord{};
+    started_ = false;
+    previous_phase_ = JumpPhase::kStand;
+    rest_time_.reset();
     has_task_ = true;
-    has_action_ = false;
   }
 
-  void act(const double* action) {
-    if (!has_task_) throw InvalidArgument("act() before reset()");
-    if (!action) throw InvalidArgument("no action");
-    for (int i = 0; i < kActionSize; ++i) {
-      if (!std::isfinite(action[i])) throw InvalidArgument("action number " + std::to_string(i) + " is not finite");
+  std::vector<double> priorAction(const double* observation) {
+    if (!has_task_) throw InvalidArgument("prior_action() before reset(): the planner needs the start pose");
+    jump::PlannerConfig config;
+    config.ranges = settings_.ranges;
+    config.gravity = gravity_;
+    config.start_com = Eigen::Vector3d(0, 0, standing_height_);
+    config.standing_com_height = standing_height_;
+    if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
+    // Turn on the ground where the legs allow it: a fast yaw spin in the air couples
+    // into roll through the swinging legs (measured: a 45 deg diagonal jump with all
+    // its yaw in flight tumbled), while yaw done in the thrust costs nothing in flight.
+    jump::JumpTarget target;
+    target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
+    target.yaw_rad = observation[3];
+    // The planner searches its other rule parameters before the yaw split, so the
+    // split is chosen here, half the yaw on the ground first (measured: all of a 45 deg turn in the thrust sat the robot down,
+    // all of it in flight tumbled it).
+    for (double fraction : {0.5, 0.25, 0.75}) {
+      config.yaw_at_lift_off_fraction = {fraction};
+      if (jump::planJump(target, config).feasible) break;
+      config.yaw_at_lift_off_fraction = {0.0};
     }
-    for (int i = 0; i < kActionSize; ++i) action_[i] = action[i];
-    has_action_ = true;
+    // The landing stops the CoM v / wn beyond its touchdown point (jump_phases.h):
+    // aim the touchdown that much short of the target, a few fixed-point rounds.
+    jump::PlannedJump plan = jump::planJump(target, config);
+    for (int round = 0; round < 4 && plan.feasible; ++round) {
+      const Eigen::Vector2d stop = plan.lift_off.velocity.head<2>() / JumpController::kLandingFrequency;
+      jump::JumpTarget aimed = target;
+      aimed.displacement.head<2>() -= stop;
+      const jump::PlannedJump next = jump::planJump(aimed, config);
+      if (!next.feasible) break;
+      plan = next;
+    }
+    if (!plan.feasible && host_->log) {
+      host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + plan.reason).c_str());
+    }
+    const jump::ActionVector raw = jump::unmapAction(plan.action, settings_.ranges);
+    return std::vector<double>(raw.begin(), raw.end());
+  }
+
+  void act(const double* raw_action) {
+    if (!has_task_) throw InvalidArgument("act() before reset()");
+    jump::ActionVector raw{};
+    for (int i = 0; i < kActionSize; ++i) {
+      if (std::isnan(raw_action[i])) throw InvalidArgument("action number " + std::to_string(i) + " is NaN");
+      raw[i] = raw_action[i];
+    }
+    const jump::MappedAction mapped = jump::mapAction(raw, settings_.ranges);
+    action_ = mapped.action;
+    record_.raw_action = Eigen::Map<const Eigen::VectorXd>(raw.data(), kActionSize);
+    const Eigen::Vector3d target(task_[0], task_[1], task_[2]);
+    const double azimuth = jump::jumpPlaneAzimuth(target);
+
+    // The plan as the controller will make it (from the reset pose), and its flight.
+    const Eigen::Vector3d com_start(0, 0, standing_height_);
+    const jump::ThrustPlan plan(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero());
+    const jump::PointState lift_off = plan.liftOff();
+    const jump::BallisticFlight flight({lift_off.position, lift_off.velocity}, gravity_);
+    const double t_lift_off = settings_.jump.start_delay + plan.duration();
+    const Eigen::Vector3d target_com(target.x(), target.y(), target.z() + standing_height_);
+    metric("planned_lift_off_time", t_lift_off);
+    metric("planned_lift_off_x", lift_off.position.x());
+    metric("planned_lift_off_y", lift_off.position.y());
+    metric("planned_lift_off_z", lift_off.position.z());
+    metric("planned_lift_off_vx", lift_off.velocity.x());
+    metric("planned_lift_off_vy", lift_off.velocity.y());
+    metric("planned_lift_off_vz", lift_off.velocity.z());
+    metric("planned_apex_time", t_lift_off + flight.apexTime());
+    metric("planned_apex_height", flight.apexHeight() - standing_height_);
+    const std::optional<double> t_fall = flight.landingTime(target_com.z());
+    metric("planned_touchdown_time", t_fall ? t_lift_off + *t_fall : NAN);
+    metric("planned_flight_time", t_fall ? *t_fall : NAN);
+    const std::optional<Eigen::Vector3d> landing = flight.landingPoint(target_com.z());
+    metric("predicted_landing_x", landing ? landing->x() : NAN);
+    metric("predicted_landing_y", landing ? landing->y() : NAN);
+    metric("predicted_landing_z", landing ? landing->z() - standing_height_ : NAN);
+    metric("action_excess", mapped.totalRawExcess());
+    for (int i = 0; i < kActionSize; ++i) {
+      metric(std::string("action_") + jump::actionParameterName(static_cast<jump::ActionParameter>(i)),
+             jump::toVector(mapped.action)[i]);
+    }
+
+    // The safety filter: nothing runs that cannot work.
+    jump::SafetyCheck check;
+    check.gravity = gravity_;
+    check.apex_clearance = settings_.apex_clearance;
+    const jump::SafetyVerdict verdict = check({lift_off.position, lift_off.velocity}, target_com);
+    if (!verdict) throw Rejected(std::string(jump::safetyIssueName(verdict.issue)) + ": " + verdict.reason);
+    if (std::optional<jump::LegWorkspace> ws = workspace()) {
+      if (std::optional<std::string> out =
+              jump::thrustLeavesWorkspace(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws)) {
+        throw Rejected("leg_workspace: " + *out);
+      }
+    }
+
+    JumpSettings js = settings_.jump;
+    const jump::ActionVector physical = jump::toVector(mapped.action);
+    js.action.assign(physical.begin(), physical.end());
+    js.azimuth = azimuth;
+    controller_ = std::make_unique<JumpController>(host_, js);
   }
 
   bool step(const pronk_robot_state& state, double* torque) {
-    if (!has_action_) throw InvalidArgument("step() before act(): the episode has no action");
-    hold_.compute(state, torque);
-    return state.time >= duration_;
+    if (!controller_) throw InvalidArgument("step() before act(): the episode has no action");
+    if (!torque) throw InvalidArgument("no torque buffer");
+    if (!started_) {
+      controller_->reset(state);
+      started_ = true;
+    }
+    controller_->compute(state, torque);
+    const JumpPhase phase = controller_->phase();
+    if (phase != previous_phase_) onPhaseChange(phase, state);
+    previous_phase_ = phase;
+    if (phase == JumpPhase::kThrust || phase == JumpPhase::kExplosive) recordTick(state, torque);
+    if (record_.touchdown && !rest_time_) {
+      if (vec(state.com_velocity).norm() < kRestSpeed) {
+        rest_time_ = state.time - reset_time_;
+      }
+    } else if (rest_time_ && vec(state.com_velocity).norm() >= kRestSpeed) {
+      rest_time_.reset();  // moving again: not at rest yet
+    }
+    return state.time - reset_time_ >= settings_.duration - 1e-9;
   }
 
   double finish(const pronk_robot_state& state) {
     if (!has_task_) throw InvalidArgument("finish() before reset()");
-    const Eigen::Vector3d com_end(state.com_position[0], state.com_position[1], state.com_position[2]);
-    const double error = landingError(displacementInHeadingFrame(com_start_, com_end, start_yaw_),
-                                      Eigen::Vector2d(task_[0], task_[1]));
-    has_task_ = has_action_ = false;
-    return landingReward(error, error_scale_);
+    const StartFrame S = frame();
+    record_.tick_s = kControlPeriod;
+    record_.joint_limits = limits_;
+    record_.final_state = bodyState(state, S);
+    record_.final_foot_positions.clear();
+    for (int f = 0; f < feet_; ++f) record_.final_foot_positions.push_back(S.point(state.foot_position + 3 * f));
+    record_.target.displacement = Eigen::Vector3d(task_[0], task_[1], task_[2]);
+    record_.target.orientation = Eigen::Quaterniond(rotationZYX(task_[4], task_[5], task_[3]));
+    if (controller_ && controller_->plan()) {
+      const jump::PointState& lo = controller_->plan()->liftOff();
+      record_.plan.lift_off_com_position = lo.position;
+      record_.plan.lift_off_com_velocity = lo.velocity;
+    }
+    if (action_) {
+      const jump::JumpAction& a = *action_;
+      record_.plan.lift_off_orientation =
+          Eigen::Quaterniond(rotationZYX(a.liftoff_rpy_rad.x(), a.liftoff_rpy_rad.y(), a.liftoff_rpy_rad.z()));
+      record_.plan.lift_off_angular_velocity = jump::worldAngularVelocity(a.liftoff_rpy_rad, a.liftoff_rpy_rate_radps);
+    }
+    if (record_.raw_action.size() == 0) record_.raw_action = Eigen::VectorXd::Zero(kActionSize);
+    const jump::RewardBreakdown r = jump::computeReward(record_, settings_.reward);
+    for (const jump::RewardTerm* term : r.terms()) metric("penalty_" + term->name, term->cost());
+    metric("running_cost", r.running_cost);
+    metric("terminal_cost", r.terminal_cost);
+    metric("penalty_gate", r.penalty_gate);
+    metric("landing_reward", r.landing_reward);
+    metric("reward_error_xy", r.landing_error_xy);
+    metric("reward_error_z", r.landing_error_z);
+    if (record_.lift_off) metric("lift_off_time", record_.lift_off->time);
+    if (record_.apex) metric("apex_time", record_.apex->time);
+    if (record_.touchdown) metric("touchdown_time", record_.touchdown->time);
+    if (record_.lift_off) {
+      const Eigen::Vector3d dv = record_.lift_off->com_velocity - record_.plan.lift_off_com_velocity;
+      const Eigen::Vector3d dp = record_.lift_off->com_position - record_.plan.lift_off_com_position;
+      metric("lift_off_velocity_error", dv.norm());
+      metric("lift_off_position_error", dp.norm());
+    }
+    metric("rest_time", rest_time_ ? *rest_time_ : NAN);
+    has_task_ = false;
+    return r.reward;
   }
 
  private:
-  HoldController hold_;
-  double duration_, error_scale_;
+  void metric(const std::string& name, double value) {
+    if (host_->struct_size >= offsetof(pronk_host_api, report_metric) + sizeof(host_->report_metric) &&
+        host_->report_metric) {
+      host_->report_metric(host_->host, name.c_str(), value);
+    }
+  }
+
+  // The take-off surface below the CoM (the lowest feet in contact, less the foot radius).
+  StartFrame frameAt(const pronk_robot_state& s) const {
+    StartFrame S;
+    S.heading = Eigen::AngleAxisd(yawOf(quaternionOf(s).toRotationMatrix()), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    double ground = 0, count = 0;
+    for (int f = 0; f < feet_; ++f) {
+      if (!s.foot_in_contact[f]) continue;
+      ground += s.foot_position[3 * f + 2] - settings_.reward.foot_radius;
+      count += 1;
+    }
+    if (count == 0) {
+      for (int f = 0; f < feet_; ++f) ground += s.foot_position[3 * f + 2] - settings_.reward.foot_radius;
+      count = feet_;
+    }
+    S.origin = Eigen::Vector3d(s.com_position[0], s.com_position[1], ground / count);
+    return S;
+  }
+
+  // The controller's S once the thrust has begun, the reset's before.
+  StartFrame frame() const {
+    if (controller_ && controller_->plan()) return {controller_->startOrigin(), controller_->startHeading()};
+    return start_;
+  }
+
+  std::optional<jump::LegWorkspace> workspace() const {
+    if (!legs_ || !settings_.workspace_check || feet_ != jump::kLegCount) return std::nullopt;
+    jump::LegWorkspace ws;
+    ws.legs = *legs_;
+    ws.feet = start_feet_;
+    ws.com_to_trunk = com_to_trunk_;
+    return ws;
+  }
+
+  jump::BodyState bodyState(const pronk_robot_state& s, const StartFrame& S) const {
+    jump::BodyState b;
+    b.time = s.time - reset_time_;
+    b.base_position = S.point(s.base_position);
+    b.orientation = Eigen::Quaterniond(S.heading.transpose() * quaternionOf(s).toRotationMatrix());
+    b.com_position = S.point(s.com_position);
+    b.com_velocity = S.direction(s.com_velocity);
+    b.angular_velocity = S.direction(s.base_angular_velocity);
+    return b;
+  }
+
+  void onPhaseChange(JumpPhase phase, const pronk_robot_state& s) {
+    const StartFrame S = frame();
+    if (phase == JumpPhase::kThrust) record_.start_base_position = S.point(s.base_position);
+    if (phase == JumpPhase::kFlight) record_.lift_off = bodyState(s, S);
+    if (phase == JumpPhase::kDescend) record_.apex = bodyState(s, S);
+    if (phase == JumpPhase::kLanding && record_.lift_off) record_.touchdown = bodyState(s, S);
+  }
+
+  void recordTick(const pronk_robot_state& s, const double* torque) {
+    const StartFrame S = frame();
+    jump::TickSample t;
+    t.time = s.time - reset_time_;
+    t.q = Eigen::Map<const Eigen::VectorXd>(s.q, n_);
+    t.qd = Eigen::Map<const Eigen::VectorXd>(s.qd, n_);
+    t.tau_commanded = controller_->commandedTorque();
+    t.tau_applied = Eigen::Map<const Eigen::VectorXd>(torque, n_);
+    for (int f = 0; f < feet_; ++f) {
+      t.foot_force.push_back(s.foot_force ? S.direction(s.foot_force + 3 * f) : Eigen::Vector3d::Zero());
+      t.foot_in_contact.push_back(s.foot_in_contact[f] != 0);
+    }
+    t.base_position = S.point(s.base_position);
+    record_.ticks.push_back(std::move(t));
+  }
+
+  const pronk_host_api* host_;
+  EnvironmentSettings settings_;
+  int n_ = 0, feet_ = 0;
+  std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs_;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  jump::JointLimits limits_;
+
   std::array<double, kObservationSize> task_{};
-  std::array<double, kActionSize> action_{};
-  bool has_task_ = false, has_action_ = false;
-  Eigen::Vector3d com_start_ = Eigen::Vector3d::Zero();
-  double start_yaw_ = 0;
+  bool has_task_ = false;
+  double reset_time_ = 0;
+  StartFrame start_;
+  double standing_height_ = 0;
+  Eigen::Vector3d com_to_trunk_ = Eigen::Vector3d::Zero();
+  std::array<Eigen::Vector3d, jump::kLegCount> start_feet_{};
+
+  std::optional<jump::JumpAction> action_;  // the mapped action of this episode
+  std::unique_ptr<JumpController> controller_;
+  bool started_ = false;
+  JumpPhase previous_phase_ = JumpPhase::kStand;
+  jump::JumpRecord record_;
+  std::optional<double> rest_time_;
 };
 
 JumpEnvironment* self(void* instance) { return static_cast<JumpEnvironment*>(instance); }
 
-void need(const void* instance, const void* state) {
-  if (!instance || !state) throw InvalidArgument("called without an instance or a state");
+void need(const void* instance, const void* pointer) {
+  if (!instance || !pointer) throw InvalidArgument("called without an instance or a required pointer");
 }
 
 pronk_status create(const pronk_host_api* host, const pronk_param_value* params, int32_t param_count,
@@ -110,7 +495,7 @@ pronk_status create(const pronk_host_api* host, const pronk_param_value* params,
     *instance = nullptr;
     const auto& decls = paramDecls();
     const ParamReader read(params, param_count, decls.data(), static_cast<int32_t>(decls.size()));
-    *instance = new JumpEnvironment(host, readHoldSettings(read), read.real("duration"), read.real("error_scale"));
+    *instance = new JumpEnvironment(host, readSettings(read));
   });
 }
 
@@ -123,10 +508,18 @@ pronk_status reset(void* instance, const double* task, int32_t task_size, uint64
 }
 
 pronk_status act(void* instance, const double* action, char* error, size_t error_size) {
-  return guarded(error, error_size, [&] {
+  std::string rejection;
+  const pronk_status status = guarded(error, error_size, [&] {
     need(instance, action);
-    self(instance)->act(action);
+    try {
+      self(instance)->act(action);
+    } catch (const Rejected& e) {
+      rejection = e.what();
+    }
   });
+  if (status != PRONK_OK || rejection.empty()) return status;
+  writeError(error, error_size, rejection.c_str());
+  return PRONK_REJECTED;
 }
 
 pronk_status step(void* instance, const pronk_robot_state* state, double* torque, int32_t* done, char* error,
@@ -146,9 +539,18 @@ pronk_status finish(void* instance, const pronk_robot_state* state, double* rewa
   });
 }
 
+pronk_status priorAction(void* instance, const double* observation, double* action, char* error, size_t error_size) {
+  return guarded(error, error_size, [&] {
+    need(instance, observation);
+    if (!action) throw InvalidArgument("no action buffer");
+    const std::vector<double> a = self(instance)->priorAction(observation);
+    std::copy(a.begin(), a.end(), action);
+  });
+}
+
 void destroy(void* instance) { delete self(instance); }
 
-const pronk_environment_ops kOps = {sizeof(pronk_environment_ops), reset, act, step, finish, destroy};
+const pronk_environment_ops kOps = {sizeof(pronk_environment_ops), reset, act, step, finish, destroy, priorAction};
 
 }  // namespace
 
@@ -157,8 +559,8 @@ const pronk_factory* jumpEnvironmentFactory() {
       sizeof(pronk_factory),
       PRONK_FACTORY_ENVIRONMENT,
       "jump",
-      "one jump to a target per episode (6 target numbers in, 13 jump parameters, landing reward); "
-      "partial: holds the stance, does not jump yet",
+      "one jump to a target per episode: 6 target numbers in, 13 raw jump parameters, the paper's reward; "
+      "safety filter before the jump; prior_action is the analytic ballistic planner",
       static_cast<int32_t>(paramDecls().size()),
       paramDecls().data(),
       0,

@@ -96,7 +96,9 @@ JumpController::JumpController(const pronk_host_api* host, const JumpSettings& s
   q_ref_ = Eigen::VectorXd::Zero(n_);
   qd_ref_ = Eigen::VectorXd::Zero(n_);
   blend_from_ = Eigen::VectorXd::Zero(n_);
+  commanded_ = Eigen::VectorXd::Zero(n_);
   jacobian_.resize(3, 6 + n_);
+  if (!std::isfinite(settings.azimuth)) throw InvalidArgument("the jump azimuth is not finite");
 }
 
 void JumpController::enter(JumpPhase phase, double time, const std::string& detail) {
@@ -113,6 +115,7 @@ void JumpController::reset(const pronk_robot_state& state) {
   reset_time_ = state.time;
   phase_start_ = state.time;
   all_down_seen_ = false;
+  touchdown_com_.reset();
   plan_.reset();
   orientation_.reset();
   phase_ = has_action_ ? JumpPhase::kStand : JumpPhase::kHold;
@@ -136,8 +139,9 @@ void JumpController::startThrust(const pronk_robot_state& s) {
   }
   ground /= weight;
   origin_ = Eigen::Vector3d(s.com_position[0], s.com_position[1], ground);
+  standing_height_ = s.com_position[2] - ground;
   const Eigen::Vector3d com_start_S(0, 0, s.com_position[2] - ground);
-  plan_ = std::make_unique<jump::ThrustPlan>(action_, 0.0, com_start_S, Eigen::Vector3d::Zero());
+  plan_ = std::make_unique<jump::ThrustPlan>(action_, settings_.azimuth, com_start_S, Eigen::Vector3d::Zero());
   const Eigen::Vector3d rpy0 = rpyFromRotation(heading_.transpose() * R);
   orientation_ = std::make_unique<jump::OrientationTrajectory>(rpy0, action_, plan_->duration());
   thrust_start_ = s.time;
@@ -242,10 +246,60 @@ void JumpController::landingReference(const pronk_robot_state& s) {
       const Eigen::Vector3d target = R_des.transpose() * (vec(s.foot_position + 3 * f) - trunk_des);
       q_ref_.segment<3>(3 * f) = legIk(f, target);
     } else {
-      for (int k = 0; k < 3; ++k) q_ref_(3 * f + k) = settings_.hold.stance[k];
+      // Reach for the ground: the stance foot under a level trunk, from the
+      // trunk as it is (a pitched trunk would hold a stance-joint foot in the air).
+      q_ref_.segment<3>(3 * f) =
+          legIk(f, R.transpose() * (R_des * stance_feet_.col(f) - Eigen::Vector3d(0, 0, kLandingReach)));
     }
   }
   qd_ref_.setZero();
+}
+
+void JumpController::landingTorques(const pronk_robot_state& s, double kp, double* torque) {
+  Eigen::Map<const Eigen::VectorXd> q(s.q, n_), qd(s.qd, n_);
+  Eigen::Map<Eigen::VectorXd> tau(torque, n_);
+  tau = kp * (q_ref_ - q) + settings_.hold.kd * (qd_ref_ - qd);
+  std::vector<int> contact;
+  double ground = 0;
+  for (int f = 0; f < feet_; ++f) {
+    if (!s.foot_in_contact[f]) continue;
+    contact.push_back(f);
+    const double r = host_->foot_radius ? host_->foot_radius(host_->host, f) : 0.0;
+    ground += s.foot_position[3 * f + 2] - (std::isfinite(r) ? r : 0.0);
+  }
+  if (!contact.empty() && settings_.hold.gravity_compensation) {
+    ground /= double(contact.size());
+    // The body wrench that stops the CoM where it touched down, at the standing
+    // height, with a level trunk: critically damped, friction-limited.
+    const Eigen::Vector3d c = vec(s.com_position), v = vec(s.com_velocity);
+    Eigen::Vector3d goal = *touchdown_com_;
+    goal.z() = ground + standing_height_;
+    const double wn = kLandingFrequency;
+    const Eigen::Vector3d a_des = wn * wn * (goal - c) - 2.0 * wn * v;
+    Eigen::Vector3d force = mass_ * (a_des - gravity_);
+    force.z() = std::max(force.z(), 0.0);
+    const double horizontal = force.head<2>().norm(), cap = kLandingFriction * force.z();
+    if (horizontal > cap) force.head<2>() *= cap / horizontal;
+    const Eigen::Matrix3d R = rotationOf(s);
+    const Eigen::Vector3d rpy = rpyFromRotation(R);
+    const Eigen::Matrix3d yaw = Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Vector3d moment = mass_ * (yaw * Eigen::Vector3d(-kLandingTilt * rpy.x(), -kLandingTilt * rpy.y(), 0.0) -
+                                            kLandingTiltDamping * vec(s.base_angular_velocity));
+    Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
+    for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
+    const Eigen::Matrix3Xd forces = distributeWrench(points, c, force, moment);
+    for (size_t i = 0; i < contact.size(); ++i) {
+      if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
+        throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
+      }
+      tau -= jacobian_.rightCols(n_).transpose() * forces.col(static_cast<Eigen::Index>(i));
+    }
+  }
+  commanded_ = tau;
+  for (int j = 0; j < n_; ++j) {
+    if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
+    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
+  }
 }
 
 void JumpController::jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref,
@@ -272,6 +326,7 @@ void JumpController::jointTorques(const pronk_robot_state& s, double kp, const E
       }
     }
   }
+  commanded_ = tau;
   for (int j = 0; j < n_; ++j) {
     if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
     tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
@@ -282,6 +337,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
   if (!torque) throw InvalidArgument("no torque buffer");
   if (phase_ == JumpPhase::kHold) {
     hold_.compute(s, torque);
+    commanded_ = Eigen::Map<const Eigen::VectorXd>(torque, n_);
     return;
   }
   if (s.joint_count != n_ || s.foot_count != feet_ || !s.q || !s.qd || !s.foot_position || !s.foot_in_contact) {
@@ -302,17 +358,22 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     const double a = smoothstep((s.time - phase_start_) / kLandingRamp);
     const double kp_low = settings_.hold.kp / settings_.flight_kp_division;
     landingReference(s);
-    int down = 0;
-    for (int f = 0; f < feet_; ++f) down += s.foot_in_contact[f] ? 1 : 0;
-    jointTorques(s, kp_low + a * (settings_.hold.kp - kp_low), q_ref_, qd_ref_,
-                 settings_.hold.gravity_compensation && all_down_seen_ && (down >= 3 || down == feet_),
-                 Eigen::Vector3d::Zero(), torque);
+    if (!touchdown_com_) {  // no flight before (an abandoned jump): plain stance
+      int down = 0;
+      for (int f = 0; f < feet_; ++f) down += s.foot_in_contact[f] ? 1 : 0;
+      jointTorques(s, kp_low + a * (settings_.hold.kp - kp_low), q_ref_, qd_ref_,
+                   settings_.hold.gravity_compensation && all_down_seen_ && (down >= 3 || down == feet_),
+                   Eigen::Vector3d::Zero(), torque);
+      return;
+    }
+    landingTorques(s, kp_low + a * (settings_.hold.kp - kp_low), torque);
     return;
   }
 
   if (phase_ == JumpPhase::kStand) {
     if (s.time - reset_time_ < settings_.start_delay - 1e-9) {
       hold_.compute(s, torque);
+      commanded_ = Eigen::Map<const Eigen::VectorXd>(torque, n_);
       return;
     }
     startThrust(s);
@@ -343,6 +404,10 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
   const double kp_flight = settings_.hold.kp / settings_.flight_kp_division;
   if (phase_ == JumpPhase::kFlight || phase_ == JumpPhase::kDescend) {
     if (any_contact) {
+      // The CoM comes to rest v / wn beyond the touchdown point: with that goal the
+      // critically damped stop is a pure exponential, with no overshoot and return.
+      touchdown_com_ = vec(s.com_position);
+      touchdown_com_->head<2>() += vec(s.com_velocity).head<2>() / kLandingFrequency;
       enter(JumpPhase::kLanding, s.time);
       all_down_seen_ = false;
       compute(s, torque);

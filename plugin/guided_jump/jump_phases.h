@@ -34,6 +34,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ enum class Feedforward { kGravity, kDynamic };
 struct JumpSettings {
   HoldSettings hold;                 // gains, stance (= landing pose), gravity compensation
   std::vector<double> action;        // empty: hold the stance; else 13 physical numbers (ActionParameter order)
+  double azimuth = 0.0;              // rad: the jump plane's direction in the start frame (from the target)
   double start_delay = 0.2;          // s of standing before the thrust
   Feedforward feedforward = Feedforward::kGravity;
   double flight_kp_division = 3.0;   // Kp in flight and descent = kp / this
@@ -71,6 +73,14 @@ class JumpController {
   static constexpr double kBlendTime = 0.1;     // s, tuck and extension smoothsteps
   static constexpr double kLiftOffWait = 0.15;  // s after the plan's end before giving up on lift-off
   static constexpr double kLandingRamp = 0.3;   // s from touchdown until Kp is fully back
+  // Landing body wrench: natural frequency of the CoM's stop (rad/s), the share of
+  // the normal force it may ask sideways, and the trunk's levelling gains per kg
+  // (N m / rad / kg and N m s / rad / kg).
+  static constexpr double kLandingFrequency = 5.0;
+  static constexpr double kLandingFriction = 0.6;
+  static constexpr double kLandingTilt = 4.0;
+  static constexpr double kLandingTiltDamping = 0.4;
+  static constexpr double kLandingReach = 0.0;  // m below the stance a foot in the air reaches for the ground
 
   // Throws InvalidArgument for an action of the wrong size or one the method rejects.
   JumpController(const pronk_host_api* host, const JumpSettings& settings);
@@ -80,6 +90,13 @@ class JumpController {
 
   JumpPhase phase() const { return phase_; }
   bool jumping() const { return has_action_; }
+  // From the thrust start on: the plan (start frame S) and S in the world.
+  const jump::ThrustPlan* plan() const { return plan_.get(); }
+  const Eigen::Vector3d& startOrigin() const { return origin_; }    // S origin, world
+  const Eigen::Matrix3d& startHeading() const { return heading_; }  // S -> world
+  double thrustStartTime() const { return thrust_start_; }
+  // The last tick's torques before the effort clamp (what the controller asked for).
+  const Eigen::VectorXd& commandedTorque() const { return commanded_; }
 
  private:
   void enter(JumpPhase phase, double time, const std::string& detail = "");
@@ -91,6 +108,9 @@ class JumpController {
   // Newton steps on the host's leg kinematics from q_ref_'s current values.
   Eigen::Vector3d legIk(int foot, const Eigen::Vector3d& foot_base);
   Eigen::Matrix3d legJacobian(int foot, const Eigen::VectorXd& q);
+  // Landing: joint PD plus the body wrench that stops the CoM where it touched
+  // down, levels the trunk and carries the weight, spread over the feet in contact.
+  void landingTorques(const pronk_robot_state& s, double kp, double* torque);
 
   const pronk_host_api* host_;
   JumpSettings settings_;
@@ -108,11 +128,13 @@ class JumpController {
   double phase_start_ = 0;
   double thrust_start_ = 0;
   bool all_down_seen_ = false;  // landing: every foot has touched down
+  std::optional<Eigen::Vector3d> touchdown_com_;  // CoM at touchdown after a flight
+  double standing_height_ = 0;  // CoM above the ground at the thrust start
   std::unique_ptr<jump::ThrustPlan> plan_;
   std::unique_ptr<jump::OrientationTrajectory> orientation_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // S origin, world
   Eigen::Matrix3d heading_ = Eigen::Matrix3d::Identity();  // S -> world rotation
-  Eigen::VectorXd q_ref_, qd_ref_, blend_from_;
+  Eigen::VectorXd q_ref_, qd_ref_, blend_from_, commanded_;
   Eigen::Vector3d stance_offset_ = Eigen::Vector3d::Zero();  // trunk - feet centroid at the thrust start, trunk frame
   Eigen::Matrix3Xd stance_feet_;  // feet at the stance joints, trunk frame
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;

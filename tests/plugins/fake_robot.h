@@ -7,6 +7,7 @@
 #include <array>
 #include <limits>
 #include <string>
+#include <map>
 #include <vector>
 
 #include "pronk/plugin_abi.h"
@@ -74,6 +75,7 @@ class FakeRobot {
       self(h).events.push_back({t, name ? name : "", detail ? detail : ""});
     };
     api_.log = [](void* h, int32_t, const char* message) { self(h).log_lines.push_back(message ? message : ""); };
+    api_.report_metric = [](void* h, const char* name, double value) { self(h).metrics[name ? name : ""] = value; };
   }
 
   int32_t jointCount() const { return kFeet * joints_per_leg_; }
@@ -134,6 +136,7 @@ class FakeRobot {
     std::string name, detail;
   };
   std::vector<Event> events;
+  std::map<std::string, double> metrics;
   std::vector<std::string> log_lines;
   double time = 0;
   Eigen::Vector3d com{0, 0, 0.3};

@@ -150,15 +150,15 @@ TEST_F(GuidedJumpPhases, PhasesFollowTheContacts) {
     EXPECT_NEAR(extended(j), 100.0 / 3.0 * (stance[j % 3] - robot_.q()[j]), 1e-4);  // IK to the level stance
   }
 
-  // One foot down: landing. The legs in the air keep the stance at Kp / 3 (the
-  // stiffness ramps back from touchdown on), with no gravity compensation until
-  // every foot is down.
+  // One foot down: landing. The legs in the air reach for the stance feet under a
+  // level trunk (here: the stance joints, by IK) at Kp / 3 (the stiffness ramps
+  // back from touchdown on); only the foot in contact carries the landing wrench.
   robot_.contact()[2] = 1;
   robot_.time = 1.0;
   const Eigen::VectorXd landing = torques(*jump, robot_.state());
   EXPECT_TRUE(landing.allFinite());
   for (int j : {0, 1, 2, 3, 4, 5, 9, 10, 11}) {
-    EXPECT_NEAR(landing(j), 100.0 / 3.0 * (stance[j % 3] - robot_.q()[j]), 1e-9) << j;
+    EXPECT_NEAR(landing(j), 100.0 / 3.0 * (stance[j % 3] - robot_.q()[j]), 1e-3) << j;
   }
   // All feet down and the ramp over: full Kp with gravity compensation, finite.
   robot_.contact().fill(1);

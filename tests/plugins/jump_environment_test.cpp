@@ -1,6 +1,8 @@
-// The `jump` environment through the plugin ABI: the observation is the task,
-// the action is checked, step() holds the stance (the jump itself is not there
-// yet), and finish() gives the paper's landing reward exp(-e / 0.1).
+// The `jump` environment through the plugin ABI on a fake robot: the
+// observation is the task, the action is checked, prior_action is the ballistic
+// planner, the safety filter rejects what cannot work before anything runs, and
+// finish() reports the reward with every term as a metric. (Whole jumps on the
+// simulated Go1 are scenario tests: tests/cli/guided_jump_cli_test.cpp.)
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -24,7 +26,7 @@ class JumpEnvironment : public ::testing::Test {
     const pronk_factory* f = registry_.find(PRONK_FACTORY_ENVIRONMENT, "jump");
     ASSERT_NE(f, nullptr);
     env_ = std::make_unique<EnvironmentInstance>(*f, lib.path(), robot_.api(),
-                                                 resolveParams(*f, {{"duration", "0.5", {}}}, {}));
+                                                 resolveParams(*f, {{"duration", "0.5", {}}, {"start_delay", "1.0", {}}}, {}));
   }
   static std::vector<double> midAction() { return std::vector<double>(13, 0.0); }
 
@@ -36,8 +38,6 @@ class JumpEnvironment : public ::testing::Test {
 TEST_F(JumpEnvironment, ObservationIsTheTask) {
   const std::vector<double> task = {0.6, -0.2, 0.1, 0.5, 0.05, -0.1};
   EXPECT_EQ(env_->reset(task, 7, robot_.state()), task);
-  ASSERT_FALSE(robot_.events.empty());
-  EXPECT_EQ(robot_.events.back().name, "hold");
 }
 
 TEST_F(JumpEnvironment, TaskMustHaveSixFiniteNumbers) {
@@ -49,7 +49,7 @@ TEST_F(JumpEnvironment, TaskMustHaveSixFiniteNumbers) {
   }
 }
 
-TEST_F(JumpEnvironment, ActionMustBeThirteenFiniteNumbers) {
+TEST_F(JumpEnvironment, ActionMustBeThirteenNumbersWithoutNaN) {
   env_->reset({0.6, 0, 0, 0, 0, 0}, 0, robot_.state());
   EXPECT_THROW(env_->act(std::vector<double>(12, 0.0)), Error);
   std::vector<double> action = midAction();
@@ -58,13 +58,42 @@ TEST_F(JumpEnvironment, ActionMustBeThirteenFiniteNumbers) {
     env_->act(action);
     FAIL() << "accepted";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("action number 4 is not finite"));
+    EXPECT_THAT(e.what(), HasSubstr("action number 4 is NaN"));
   }
-  EXPECT_NO_THROW(env_->act(midAction()));
 }
 
-TEST_F(JumpEnvironment, StepNeedsAnActionHoldsTheStanceAndEndsAtTheDuration) {
-  env_->reset({0.6, 0, 0, 0, 0, 0}, 0, robot_.state());
+TEST_F(JumpEnvironment, PriorActionIsAFeasiblePlanTheFilterAccepts) {
+  ASSERT_TRUE(env_->hasPriorAction());
+  const std::vector<double> obs = env_->reset({0.4, 0, 0, 0, 0, 0}, 0, robot_.state());
+  const std::vector<double> action = env_->priorAction(obs);
+  ASSERT_EQ(action.size(), 13u);
+  for (double a : action) EXPECT_LE(std::abs(a), 5.0 + 1e-9);  // inside the raw range: no action-limit penalty
+  EXPECT_EQ(env_->act(action), std::nullopt);
+  // The plan's predicted CoM landing is the target, less the landing's stopping distance.
+  ASSERT_TRUE(robot_.metrics.count("predicted_landing_x"));
+  EXPECT_GT(robot_.metrics["predicted_landing_x"], 0.1);
+  EXPECT_LT(robot_.metrics["predicted_landing_x"], 0.4 + 1e-9);
+  EXPECT_NEAR(robot_.metrics["predicted_landing_y"], 0.0, 1e-9);
+}
+
+TEST_F(JumpEnvironment, SafetyFilterRejectsAnImpossibleUpJumpBeforeItRuns) {
+  // 1 m up: no action in the ranges gets the CoM that high.
+  const std::vector<double> obs = env_->reset({0.3, 0, 1.0, 0, 0, 0}, 0, robot_.state());
+  const std::optional<std::string> why = env_->act(env_->priorAction(obs));
+  ASSERT_TRUE(why.has_value());
+  EXPECT_THAT(*why, HasSubstr("apex_below_target"));
+  // The slowest lift-off (every raw output at its lower end) cannot reach 0.4 m up either.
+  env_->reset({0.3, 0, 0.4, 0, 0, 0}, 0, robot_.state());
+  const std::optional<std::string> slow = env_->act(std::vector<double>(13, -5.0));
+  ASSERT_TRUE(slow.has_value());
+  EXPECT_THAT(*slow, HasSubstr("apex"));
+  // Nothing runs after a rejection.
+  std::vector<double> tau(robot_.jointCount());
+  EXPECT_THROW(env_->step(robot_.state(), tau.data()), Error);
+}
+
+TEST_F(JumpEnvironment, StepNeedsAnActionAndEndsAtTheDuration) {
+  const std::vector<double> obs = env_->reset({0.4, 0, 0, 0, 0, 0}, 0, robot_.state());
   std::vector<double> tau(robot_.jointCount());
   try {
     env_->step(robot_.state(), tau.data());
@@ -72,32 +101,34 @@ TEST_F(JumpEnvironment, StepNeedsAnActionHoldsTheStanceAndEndsAtTheDuration) {
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("step() before act()"));
   }
-  env_->act(midAction());
+  ASSERT_EQ(env_->act(env_->priorAction(obs)), std::nullopt);
   robot_.time = 0.1;
   EXPECT_FALSE(env_->step(robot_.state(), tau.data()));
-  // The hold controller's gravity compensation: the legs push down.
-  double sum = 0;
+  double sum = 0;  // standing before the thrust (start_delay 1 s): the legs carry the weight
   for (double t : tau) sum += std::abs(t);
   EXPECT_GT(sum, 0);
   robot_.time = 0.5;
   EXPECT_TRUE(env_->step(robot_.state(), tau.data()));
 }
 
-TEST_F(JumpEnvironment, RewardIsTheLandingTermOfTheHorizontalError) {
-  robot_.com = Eigen::Vector3d(1.0, 2.0, 0.3);
-  env_->reset({0.6, 0.0, 0.2, 0, 0, 0}, 0, robot_.state());
-  env_->act(midAction());
-  robot_.com = Eigen::Vector3d(1.5, 2.1, 0.9);  // moved 0.5 forward, 0.1 left; height does not count
-  const double e = std::hypot(0.5 - 0.6, 0.1 - 0.0);
-  EXPECT_NEAR(env_->finish(robot_.state()), std::exp(-e / 0.1), 1e-12);
-}
-
-TEST_F(JumpEnvironment, TargetIsInTheStartHeadingFrame) {
-  robot_.base_quaternion = {std::cos(M_PI / 4), 0, 0, std::sin(M_PI / 4)};  // facing +y
-  env_->reset({0.5, 0.0, 0, 0, 0, 0}, 0, robot_.state());
-  env_->act(midAction());
-  robot_.com += Eigen::Vector3d(0, 0.5, 0);  // 0.5 m straight ahead
-  EXPECT_NEAR(env_->finish(robot_.state()), 1.0, 1e-12);
+TEST_F(JumpEnvironment, FinishReportsTheRewardAndEveryTerm) {
+  const std::vector<double> obs = env_->reset({0.4, 0, 0, 0, 0, 0}, 0, robot_.state());
+  ASSERT_EQ(env_->act(env_->priorAction(obs)), std::nullopt);
+  std::vector<double> tau(robot_.jointCount());
+  robot_.time = 0.1;
+  env_->step(robot_.state(), tau.data());
+  const double reward = env_->finish(robot_.state());
+  EXPECT_GE(reward, 0.0);
+  EXPECT_LE(reward, 1.0);
+  for (const char* term : {"penalty_joint_position_limits", "penalty_friction_cone", "penalty_workspace",
+                           "penalty_lift_off_position", "penalty_touchdown_bounce", "penalty_action_limit",
+                           "landing_reward", "penalty_gate", "reward_error_xy"}) {
+    EXPECT_TRUE(robot_.metrics.count(term)) << term;
+  }
+  // The robot never moved: the landing error is the whole target distance, and
+  // the reward is the landing term times the penalty gate.
+  EXPECT_NEAR(robot_.metrics["reward_error_xy"], 0.4, 1e-6);
+  EXPECT_NEAR(reward, robot_.metrics["landing_reward"] * robot_.metrics["penalty_gate"], 1e-12);
 }
 
 }  // namespace

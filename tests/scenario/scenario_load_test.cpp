@@ -438,7 +438,7 @@ TEST(Errors, UnknownAttributeListsTheKnownOnes) {
   const fs::path file =
       tree.write("t.xml", scenarioWith(tinyPlatform() + "<targets>\n<target name=\"a\" dx=\"1\"/>\n</targets>\n"));
   EXPECT_EQ(loadError(file),
-            file.string() + ":8: <target>: unknown attribute \"dx\" (known: name, x, y, z, yaw, roll, pitch)");
+            file.string() + ":8: <target>: unknown attribute \"dx\" (known: name, x, y, z, yaw, roll, pitch, tolerance_xy, tolerance_yaw)");
 }
 
 TEST(Errors, PackagePathMustExist) {

@@ -20,6 +20,8 @@ class Controller {
   virtual void reset(const RobotState& state) {}
   // One control tick: joint torques in controller order (N m).
   virtual Eigen::VectorXd compute(const RobotState& state) = 0;
+  // True once the controller has ended the episode (after the tick that said so).
+  virtual bool finished() const { return false; }
 };
 
 // Built-in controller names, in one place.

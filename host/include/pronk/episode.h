@@ -3,7 +3,10 @@
 // become trace events.
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "pronk/controller.h"
 #include "pronk/trace.h"
@@ -23,8 +26,31 @@ struct EpisodeResult {
   StepStatistics statistics;
 };
 
-// Resets nothing: runs from the World's current state. Controller errors
-// (pronk::Error) end the episode as a failure with reason "controller".
+// Resets nothing: runs from the World's current state, until `duration` or the
+// controller says it has finished. Controller errors (pronk::Error) end the
+// episode as a failure with reason "controller".
 EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOptions& options);
+
+// One episode of an environment factory (one action per episode): reset with a
+// task, the policy's action for the observation, act (the environment may
+// reject the action: nothing is simulated), the ticks until the environment
+// says done (at most options.duration), finish. The environment's events and
+// metrics land in the episode trace.
+struct EnvironmentEpisodeResult {
+  std::vector<double> task, observation, action;
+  std::optional<std::string> rejected;  // the environment's reason; then nothing ran
+  EpisodeResult episode;                // samples and events (an empty trace when rejected)
+  // finish()'s reward; 0 when the episode failed (non-foot contact, divergence,
+  // controller error) or was rejected.
+  double reward = 0;
+  double environment_reward = 0;        // finish()'s value even for a failed episode
+};
+
+// A policy: observation -> action; it may ask the environment (e.g. for its prior_action).
+using Policy = std::function<std::vector<double>(const std::vector<double>& observation, EnvironmentInstance& env)>;
+
+EnvironmentEpisodeResult runEnvironmentEpisode(World& world, const pronk_factory& factory, const std::string& origin,
+                                               const ResolvedParams& params, const std::vector<double>& task,
+                                               uint64_t seed, const Policy& policy, const EpisodeOptions& options);
 
 }  // namespace pronk

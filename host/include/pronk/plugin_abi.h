@@ -40,6 +40,7 @@
  *
  * Version history:
  *   1.0  first version.
+ *   1.1  PRONK_REJECTED; pronk_host_api::report_metric; pronk_environment_ops::prior_action.
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -54,7 +55,7 @@ extern "C" {
 #endif
 
 #define PRONK_ABI_MAJOR 1u
-#define PRONK_ABI_MINOR 0u
+#define PRONK_ABI_MINOR 1u
 #define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
 #define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
 #define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
@@ -73,7 +74,11 @@ typedef enum pronk_status {
   PRONK_ERROR_INVALID_ARGUMENT = 1, /* a parameter or input is out of its domain */
   PRONK_ERROR_VERSION = 2,          /* ABI major mismatch */
   PRONK_ERROR_FAILED = 3,           /* the call could not do its work; see message */
-  PRONK_ERROR_UNSUPPORTED = 4       /* the callee does not offer this operation */
+  PRONK_ERROR_UNSUPPORTED = 4,      /* the callee does not offer this operation */
+  /* 1.1: an environment's act() refuses the action before anything runs (its safety
+     filter); the message says why. Not an error of the plugin: the episode is
+     reported as rejected and not simulated. */
+  PRONK_REJECTED = 5
 } pronk_status;
 
 typedef enum pronk_factory_kind {
@@ -167,6 +172,10 @@ typedef struct pronk_host_api {
   void (*emit_event)(void* host, double time, const char* name, const char* detail);
   /* Log a line (level 0 info, 1 warning, 2 error). */
   void (*log)(void* host, int32_t level, const char* message);
+  /* 1.1: record a named number of the episode (a reward term, a planned time ...),
+     reported with the episode's results; a later value of the same name replaces
+     the earlier one. Names are [a-z0-9_]+. */
+  void (*report_metric)(void* host, const char* name, double value);
 } pronk_host_api;
 
 /* Operations on a controller instance. */
@@ -188,7 +197,8 @@ typedef struct pronk_environment_ops {
   pronk_status (*reset)(void* instance, const double* task, int32_t task_size, uint64_t seed,
                         const pronk_robot_state* state, double* observation,
                         char* error, size_t error_size);
-  /* Apply the episode's action (action_size numbers). */
+  /* Apply the episode's action (action_size numbers). From 1.1 it may return
+     PRONK_REJECTED (with the reason) when the action must not run. */
   pronk_status (*act)(void* instance, const double* action, char* error, size_t error_size);
   /* One control tick; sets *done = 1 to end the episode early. */
   pronk_status (*step)(void* instance, const pronk_robot_state* state, double* torque, int32_t* done,
@@ -197,6 +207,12 @@ typedef struct pronk_environment_ops {
   pronk_status (*finish)(void* instance, const pronk_robot_state* state, double* reward,
                          char* error, size_t error_size);
   void (*destroy)(void* instance);
+  /* 1.1, optional (NULL: none): the environment's own analytic policy, an action
+     (action_size numbers, in the same units as act() takes) for an observation
+     (observation_size numbers), computed without simulating. For the jump: the
+     ballistic planner. Usable as a baseline and as a learned policy's prior. */
+  pronk_status (*prior_action)(void* instance, const double* observation, double* action,
+                               char* error, size_t error_size);
 } pronk_environment_ops;
 
 /* A named factory. Sizes are declarations the host checks before running:

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -172,8 +173,14 @@ class EnvironmentInstance {
 
   // Starts an episode; returns the observation (observation_size numbers).
   std::vector<double> reset(const std::vector<double>& task, uint64_t seed, const pronk_robot_state& state);
-  // The episode's action; its length must be the factory's action_size (when declared).
-  void act(const std::vector<double>& action);
+  // The episode's action; its length must be the factory's action_size. Returns
+  // the environment's reason when it rejects the action (PRONK_REJECTED: the
+  // episode must not run), std::nullopt when the action was taken.
+  std::optional<std::string> act(const std::vector<double>& action);
+  // The environment's own analytic policy (ABI 1.1 prior_action), if it has one.
+  bool hasPriorAction() const;
+  // Its action for an observation; throws Error when there is none or it fails.
+  std::vector<double> priorAction(const std::vector<double>& observation);
   // One control tick; returns true when the environment ends the episode early.
   bool step(const pronk_robot_state& state, double* torque);
   // The episode's reward.

@@ -30,6 +30,18 @@ struct ControllerSpec {
   SourceLocation where;
 };
 
+// The RL task a policy drives (`pronk run --policy`): an environment factory
+// with its parameters. `policy` is the scenario's default policy: "" (none: the
+// command line must name one), "ballistic" (the environment's analytic prior),
+// or a policy file (resolved absolute path).
+struct EnvironmentSpec {
+  std::string factory;              // e.g. "jump"
+  std::string plugin;               // optional library name or path ("" = search all)
+  std::vector<ParamSetting> params;
+  std::string policy;
+  SourceLocation where;
+};
+
 // Gains and limits for the joints; per-joint overrides by exact joint name.
 struct JointSettings {
   double kp = 100;        // N m/rad
@@ -108,6 +120,10 @@ struct TerrainBox {
 struct TargetSpec {
   std::string name;
   double x = 0, y = 0, z = 0, yaw = 0, roll = 0, pitch = 0;
+  // Optional pass/fail bounds for scenario tests: a jump whose landing misses by
+  // more is reported as "missed" (and `pronk run` exits with kEpisodeFailed).
+  std::optional<double> tolerance_xy;   // m, horizontal landing error
+  std::optional<double> tolerance_yaw;  // rad, |yaw error|
   SourceLocation where;
 };
 
@@ -155,6 +171,7 @@ struct Scenario {
   std::vector<TerrainBox> terrain;
   double ground_height = 0;      // m, the ground plane z
   bool ground = true;            // false: no ground plane (only boxes)
+  std::optional<EnvironmentSpec> environment;  // with it, <controller> is optional
   std::vector<TargetSpec> targets;
   std::vector<SweepSpec> sweeps;
   std::optional<RenderSpec> render;
@@ -187,6 +204,24 @@ inline constexpr std::array<SweepVariable, 11> kSweepVariables{{
     {"joints.kd", "N m s/rad"},
     {"contact.mu_static", ""},
 }};
+
+// One episode of a sweep (or of the target list): its target and the values it
+// gives other variables.
+struct EpisodeCase {
+  std::string label;   // "target forward", "grid region #12" ...
+  TargetSpec target;
+  std::vector<std::pair<std::string, double>> assignments;  // non-target sweep variables
+};
+
+// The scenario's targets, one case each (with no targets: one case at the start pose).
+std::vector<EpisodeCase> targetCases(const Scenario& scenario);
+// The cases of the sweep named `name`, in their stable order (grids: last axis
+// fastest; random: drawn in order from the seed with a portable generator). A
+// sweep that sets no target variable runs every target of the scenario per case.
+// Throws InputError naming the known sweeps for an unknown name.
+std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string& name);
+// The scenario with a case's non-target assignments applied.
+Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode);
 
 // The only major version of the format this build reads.
 constexpr int kScenarioFormatVersion = 1;

@@ -28,11 +28,35 @@ struct TraceEvent {
   std::string detail;
 };
 
+// A named number an episode reports (a reward term, a planned time ...).
+struct TraceMetric {
+  std::string name;
+  double value = 0;
+};
+
 struct Trace {
   std::vector<std::string> joint_names;
   std::vector<std::string> foot_links;
   std::vector<TraceSample> samples;
   std::vector<TraceEvent> events;
+  std::vector<TraceMetric> metrics;  // in the order first reported
+
+  // Sets a metric; a later value of the same name replaces the earlier one.
+  void setMetric(const std::string& name, double value) {
+    for (TraceMetric& m : metrics) {
+      if (m.name == name) {
+        m.value = value;
+        return;
+      }
+    }
+    metrics.push_back({name, value});
+  }
+  // The metric's value, or nullptr.
+  const double* findMetric(const std::string& name) const {
+    for (const TraceMetric& m : metrics)
+      if (m.name == name) return &m.value;
+    return nullptr;
+  }
 
   void addEvent(double time, std::string name, std::string detail = {}) {
     events.push_back({time, std::move(name), std::move(detail)});

@@ -82,15 +82,36 @@ std::vector<double> EnvironmentInstance::reset(const std::vector<double>& task, 
   return observation;
 }
 
-void EnvironmentInstance::act(const std::vector<double>& action) {
+std::optional<std::string> EnvironmentInstance::act(const std::vector<double>& action) {
   if (static_cast<int32_t>(action.size()) != factory_.action_size) {
     throw Error(describe() + " takes " + std::to_string(factory_.action_size) + " action numbers, got " +
                 std::to_string(action.size()));
   }
   Message m;
-  if (factory_.environment->act(instance_, action.data(), m.text, kMessageSize) != PRONK_OK) {
-    throw Error(describe() + ": act failed: " + m.str());
+  const pronk_status st = factory_.environment->act(instance_, action.data(), m.text, kMessageSize);
+  if (st == PRONK_REJECTED) return m.str();
+  if (st != PRONK_OK) throw Error(describe() + ": act failed: " + m.str());
+  return std::nullopt;
+}
+
+bool EnvironmentInstance::hasPriorAction() const { return factory_.environment->prior_action != nullptr; }
+
+std::vector<double> EnvironmentInstance::priorAction(const std::vector<double>& observation) {
+  if (!hasPriorAction()) throw Error(describe() + " offers no prior action (analytic policy)");
+  if (static_cast<int32_t>(observation.size()) != factory_.observation_size) {
+    throw Error(describe() + " observes " + std::to_string(factory_.observation_size) + " numbers, got " +
+                std::to_string(observation.size()));
   }
+  std::vector<double> action(static_cast<size_t>(factory_.action_size), 0.0);
+  Message m;
+  if (factory_.environment->prior_action(instance_, observation.data(), action.data(), m.text, kMessageSize) !=
+      PRONK_OK) {
+    throw Error(describe() + ": prior_action failed: " + m.str());
+  }
+  for (double a : action) {
+    if (!std::isfinite(a)) throw Error(describe() + ": prior_action returned a number that is not finite");
+  }
+  return action;
 }
 
 bool EnvironmentInstance::step(const pronk_robot_state& state, double* torque) {

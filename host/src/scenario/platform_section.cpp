@@ -119,32 +119,64 @@ void readJoints(const XMLElement& e, const SourceFile& file, JointSettings& join
 
 }  // namespace
 
-ControllerSpec readController(const XMLElement& e, const SourceFile& file) {
-  ElementReader r(e, file);
-  ControllerSpec c;
-  c.where = r.where();
-  c.factory = r.requiredText("name");
-  c.plugin = r.text("plugin", "");
-  r.rejectUnknownAttributes();
-  if (c.plugin.find('/') != std::string::npos) {  // a path, not a library name
-    c.plugin = r.path("plugin", "");
-    if (!fs::is_regular_file(c.plugin)) r.fail("plugin file not found: " + c.plugin);
-  }
+namespace {
+
+// The plugin attribute: a library name, or a path (resolved, must exist).
+std::string readPluginAttribute(ElementReader& r) {
+  const std::string plugin = r.text("plugin", "");
+  if (plugin.find('/') == std::string::npos) return plugin;
+  const std::string path = r.path("plugin", "");
+  if (!fs::is_regular_file(path)) r.fail("plugin file not found: " + path);
+  return path;
+}
+
+// <param name=".." value=".."/> children, kept as text: the plugin's schema checks them.
+std::vector<ParamSetting> readParams(ElementReader& r, const SourceFile& file) {
+  std::vector<ParamSetting> params;
   const auto kids = r.children({"param"});
   rejectDuplicateKeys(kids, "param", "name", file);
   for (const XMLElement* k : kids) {
     ElementReader pr(*k, file);
     ParamSetting param;
     param.name = pr.requiredText("name");
-    const auto value = pr.optionalText("value");  // kept as text: the plugin checks it
+    const auto value = pr.optionalText("value");
     if (!value) pr.fail("missing attribute value");
     param.value = *value;
     param.where = pr.where();
     pr.rejectUnknownAttributes();
     pr.children({});
-    c.params.push_back(std::move(param));
+    params.push_back(std::move(param));
   }
+  return params;
+}
+
+}  // namespace
+
+ControllerSpec readController(const XMLElement& e, const SourceFile& file) {
+  ElementReader r(e, file);
+  ControllerSpec c;
+  c.where = r.where();
+  c.factory = r.requiredText("name");
+  c.plugin = readPluginAttribute(r);
+  r.rejectUnknownAttributes();
+  c.params = readParams(r, file);
   return c;
+}
+
+EnvironmentSpec readEnvironment(const XMLElement& e, const SourceFile& file) {
+  ElementReader r(e, file);
+  EnvironmentSpec env;
+  env.where = r.where();
+  env.factory = r.requiredText("name");
+  env.plugin = readPluginAttribute(r);
+  env.policy = r.text("policy", "");
+  if (!env.policy.empty() && env.policy != "ballistic") {
+    env.policy = r.path("policy", "");  // a policy file, relative to this file
+    if (!fs::is_regular_file(env.policy)) r.fail("policy file not found: " + env.policy);
+  }
+  r.rejectUnknownAttributes();
+  env.params = readParams(r, file);
+  return env;
 }
 
 PlatformSpec readPlatform(const XMLElement& e, const SourceFile& file) {

@@ -139,7 +139,7 @@ void Loader::readRoot(const XMLElement& root, SourceFile& file, bool top) {
   }
   r.rejectUnknownAttributes();
   const auto kids =
-      r.children({"include", "platform", "controller", "sim", "terrain", "targets", "sweeps", "render"});
+      r.children({"include", "platform", "controller", "environment", "sim", "terrain", "targets", "sweeps", "render"});
   for (const XMLElement* k : kids) {
     if (std::string(k->Name()) == "include") {
       include(*k, file);
@@ -189,6 +189,7 @@ void Loader::dispatch(Scenario& scenario) {
     }
     if (name == "platform") scenario.platform = scenario_file::readPlatform(e, f);
     else if (name == "controller") scenario_controller = scenario_file::readController(e, f);
+    else if (name == "environment") scenario.environment = scenario_file::readEnvironment(e, f);
     else if (name == "sim") scenario.sim = scenario_file::readSim(e, f);
     else if (name == "terrain") scenario_file::readTerrain(e, f, scenario);
     else if (name == "targets") scenario.targets = scenario_file::readTargets(e, f);
@@ -207,9 +208,9 @@ void Loader::dispatch(Scenario& scenario) {
     scenario.sim.contact.where = scenario.sim.where;
   }
   if (scenario_controller) scenario.platform.controller = *scenario_controller;
-  if (scenario.platform.controller.factory.empty()) {
+  if (scenario.platform.controller.factory.empty() && !scenario.environment) {
     throw InputError(scenario.platform.where,
-                     "<platform>: no <controller> here or at the top level of the scenario");
+                     "<platform>: no <controller> here or at the top level of the scenario (nor an <environment>)");
   }
 }
 

@@ -15,6 +15,7 @@ namespace pronk::scenario_file {
 
 PlatformSpec readPlatform(const tinyxml2::XMLElement& element, const SourceFile& file);
 ControllerSpec readController(const tinyxml2::XMLElement& element, const SourceFile& file);
+EnvironmentSpec readEnvironment(const tinyxml2::XMLElement& element, const SourceFile& file);
 SimSpec readSim(const tinyxml2::XMLElement& element, const SourceFile& file);
 // Fills scenario.ground, ground_height and terrain.
 void readTerrain(const tinyxml2::XMLElement& element, const SourceFile& file, Scenario& scenario);

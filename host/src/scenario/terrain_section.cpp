@@ -1,4 +1,5 @@
 // <terrain>: the ground plane and static boxes; <targets>: where to jump.
+#include <limits>
 #include <map>
 
 #include "sections.h"
@@ -59,6 +60,8 @@ std::vector<TargetSpec> readTargets(const XMLElement& e, const SourceFile& file)
     target.yaw = t.angle("yaw", target.yaw);
     target.roll = t.angle("roll", target.roll, tilt);
     target.pitch = t.angle("pitch", target.pitch, tilt);
+    target.tolerance_xy = t.optionalNumber("tolerance_xy", Range::positive());
+    target.tolerance_yaw = t.optionalAngle("tolerance_yaw", Range::positive());
     t.rejectUnknownAttributes();
     t.children({});
     targets.push_back(std::move(target));

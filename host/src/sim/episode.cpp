@@ -40,6 +40,7 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
       const Eigen::VectorXd torque = controller.compute(s);
       trace.samples.push_back(sampleOf(world, s, torque, options.record_body_poses));
       if (!world.step(torque)) break;
+      if (controller.finished()) break;
       // Contact changes of the whole robot: all feet off, then any foot back on.
       bool any_contact = false;
       for (uint8_t c : world.state().foot_in_contact) any_contact = any_contact || c;

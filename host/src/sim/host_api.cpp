@@ -96,6 +96,11 @@ void emitEvent(void* host, double time, const char* name, const char* detail) {
   if (Trace* t = self(host).trace()) t->addEvent(time, name ? name : "", detail ? detail : "");
 }
 
+void reportMetric(void* host, const char* name, double value) {
+  if (!name || !*name) return;
+  if (Trace* t = self(host).trace()) t->setMetric(name, value);
+}
+
 
 }  // namespace
 
@@ -115,6 +120,7 @@ HostApi::HostApi(const World& world, Trace* trace) : world_(world), trace_(trace
   api_.leg_jacobian_base = legJacobianBase;
   api_.emit_event = emitEvent;
   api_.log = log;
+  api_.report_metric = reportMetric;
 }
 
 AbiStateView::AbiStateView(const RobotState& s) {

@@ -113,23 +113,10 @@ void predict(PlannedJump& plan, const PlannerConfig& cfg) {
 
 // True when every stance foot stays reachable on the whole thrust path.
 bool pathReachable(const PlannedJump& plan, const PlannerConfig& cfg, std::string* where) {
-  const LegWorkspace& ws = *cfg.workspace;
-  const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
-  const OrientationTrajectory orient(Eigen::Vector3d::Zero(), plan.action, thrust.duration());
-  const int n = std::max(ws.path_samples, 1);
-  for (int i = 0; i <= n; ++i) {
-    const double t = thrust.duration() * i / n;
-    const Eigen::Matrix3d R = orient.rotation(t);
-    const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
-    if (!feetReachable(ws.legs, ws.feet, trunk, R, ws.require_within_limits)) {
-      std::ostringstream msg;
-      msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
-          << " s thrust (CoM " << thrust.position(t).transpose() << ")";
-      *where = msg.str();
-      return false;
-    }
-  }
-  return true;
+  const std::optional<std::string> out =
+      thrustLeavesWorkspace(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), *cfg.workspace);
+  if (out) *where = *out;
+  return !out;
 }
 
 // Plans one candidate. Range problems make it infeasible with a reason; the
@@ -292,6 +279,26 @@ const char* planLimitName(PlanLimit limit) {
     case PlanLimit::kLegWorkspace: return "leg_workspace";
   }
   return "unknown";
+}
+
+std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
+                                                 const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
+                                                 const LegWorkspace& ws) {
+  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
+  const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
+  const int n = std::max(ws.path_samples, 1);
+  for (int i = 0; i <= n; ++i) {
+    const double t = thrust.duration() * i / n;
+    const Eigen::Matrix3d R = orient.rotation(t);
+    const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
+    if (!feetReachable(ws.legs, ws.feet, trunk, R, ws.require_within_limits)) {
+      std::ostringstream msg;
+      msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
+          << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+      return msg.str();
+    }
+  }
+  return std::nullopt;
 }
 
 LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,

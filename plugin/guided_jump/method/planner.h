@@ -67,6 +67,15 @@ struct LegWorkspace {
 LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
                                const Eigen::Vector3d& start_com, const Eigen::Vector3d& com_to_trunk);
 
+// Where a thrust leaves the leg workspace: samples the thrust path of `action`
+// (ThrustPlan at `azimuth` from com_start about polar_origin, with the action's
+// orientation Bezier from a level start) and returns, for the first sample at
+// which a stance foot of `workspace` is out of reach, a sentence saying when and
+// where; std::nullopt when every foot stays reachable.
+std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
+                                                 const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
+                                                 const LegWorkspace& workspace);
+
 struct PlannerConfig {
   ActionRanges ranges = go1ActionRanges();
   Eigen::Vector3d gravity = standardGravity();  // must be along -z

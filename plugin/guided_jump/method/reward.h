@@ -59,7 +59,7 @@ struct BodyState {
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();       // trunk, S axes, rad/s
 };
 
-struct JumpTarget {
+struct LandingTarget {
   // (dx, dy): trunk displacement in S; dz: height of the landing surface above
   // the take-off surface.
   Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
@@ -92,7 +92,7 @@ struct JumpRecord {
   std::optional<BodyState> touchdown;
   BodyState final_state;                              // at the end of the episode
   std::vector<Eigen::Vector3d> final_foot_positions;  // foot centres at the end, S
-  JumpTarget target;
+  LandingTarget target;
   JumpPlan plan;
   Eigen::VectorXd raw_action;  // the policy's raw (unclipped) outputs
 };

@@ -1,0 +1,134 @@
+// Sweeps and target lists expanded into episode cases (docs/scenario-format.md,
+// <sweeps>).
+#include <cstdint>
+
+#include "pronk/error.h"
+#include "pronk/scenario.h"
+
+namespace pronk {
+namespace {
+
+bool isTargetVariable(const std::string& v) { return v.rfind("target.", 0) == 0; }
+
+void setTarget(TargetSpec& t, const std::string& variable, double value) {
+  if (variable == "target.x") t.x = value;
+  else if (variable == "target.y") t.y = value;
+  else if (variable == "target.z") t.z = value;
+  else if (variable == "target.yaw") t.yaw = value;
+  else if (variable == "target.roll") t.roll = value;
+  else if (variable == "target.pitch") t.pitch = value;
+}
+
+// SplitMix64: the same numbers on every platform and standard library, unlike
+// std::uniform_real_distribution.
+struct PortableRandom {
+  uint64_t state;
+  uint64_t next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * ((next() >> 11) * 0x1.0p-53); }
+};
+
+// Each case: one value per axis.
+std::vector<std::vector<double>> axisValues(const SweepSpec& sweep) {
+  std::vector<std::vector<double>> cases;
+  switch (sweep.kind) {
+    case SweepSpec::Kind::Grid: {
+      cases.push_back({});
+      for (const SweepAxis& axis : sweep.axes) {
+        std::vector<std::vector<double>> next;
+        for (const auto& c : cases) {
+          for (double v : axis.values) {
+            next.push_back(c);
+            next.back().push_back(v);
+          }
+        }
+        cases = std::move(next);
+      }
+      break;
+    }
+    case SweepSpec::Kind::Random: {
+      PortableRandom random{sweep.seed};
+      for (int i = 0; i < sweep.count; ++i) {
+        std::vector<double> c;
+        for (const SweepAxis& axis : sweep.axes) c.push_back(random.uniform(axis.min, axis.max));
+        cases.push_back(std::move(c));
+      }
+      break;
+    }
+    case SweepSpec::Kind::Vary:
+      for (double v : sweep.axes.front().values) cases.push_back({v});
+      break;
+  }
+  return cases;
+}
+
+}  // namespace
+
+std::vector<EpisodeCase> targetCases(const Scenario& scenario) {
+  std::vector<EpisodeCase> cases;
+  for (const TargetSpec& t : scenario.targets) cases.push_back({"target " + t.name, t, {}});
+  if (cases.empty()) {
+    TargetSpec start;
+    start.name = "start";
+    cases.push_back({"start pose", start, {}});
+  }
+  return cases;
+}
+
+std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string& name) {
+  const SweepSpec* sweep = nullptr;
+  std::string known;
+  for (const SweepSpec& s : scenario.sweeps) {
+    if (s.name == name) sweep = &s;
+    known += (known.empty() ? "" : ", ") + s.name;
+  }
+  if (!sweep) {
+    throw InputError(SourceLocation{scenario.file, 0},
+                     "no sweep named '" + name + "'" + (known.empty() ? " (the scenario has none)" : "; known: " + known));
+  }
+  bool sets_target = false;
+  for (const SweepAxis& axis : sweep->axes) sets_target = sets_target || isTargetVariable(axis.variable);
+  std::vector<EpisodeCase> out;
+  const std::vector<std::vector<double>> values = axisValues(*sweep);
+  for (size_t i = 0; i < values.size(); ++i) {
+    EpisodeCase c;
+    c.label = sweep->name + " #" + std::to_string(i);
+    c.target.name = c.label;
+    c.target.where = sweep->where;
+    for (size_t a = 0; a < sweep->axes.size(); ++a) {
+      const std::string& variable = sweep->axes[a].variable;
+      if (isTargetVariable(variable)) setTarget(c.target, variable, values[i][a]);
+      else c.assignments.emplace_back(variable, values[i][a]);
+    }
+    if (sets_target) {
+      out.push_back(std::move(c));
+      continue;
+    }
+    for (const EpisodeCase& t : targetCases(scenario)) {
+      EpisodeCase each = c;
+      each.label = c.label + ", " + t.label;
+      each.target = t.target;
+      out.push_back(std::move(each));
+    }
+  }
+  return out;
+}
+
+Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode) {
+  Scenario s = scenario;
+  for (const auto& [variable, value] : episode.assignments) {
+    if (variable == "platform.trunk_mass_offset") s.platform.trunk_mass_offset = value;
+    else if (variable == "joints.damping") s.platform.joints.damping = value;
+    else if (variable == "joints.kp") s.platform.joints.kp = value;
+    else if (variable == "joints.kd") s.platform.joints.kd = value;
+    else if (variable == "contact.mu_static") s.sim.contact.mu_static = value;
+    else throw Error("sweep variable '" + variable + "' cannot be applied");
+  }
+  return s;
+}
+
+}  // namespace pronk
