@@ -365,7 +365,7 @@ class JumpEnvironment {
     for (const jump::RewardTerm* term : r.terms()) metric("penalty_" + term->name, term->cost());
     metric("running_cost", r.running_cost);
     metric("terminal_cost", r.terminal_cost);
-    metric("penalty_gate", r.penalty_gate);
+    metric("cost_gate", r.penalty_gate);  // exp(-C^2 / 5); not a "penalty_" term
     metric("landing_reward", r.landing_reward);
     metric("reward_error_xy", r.landing_error_xy);
     metric("reward_error_z", r.landing_error_z);

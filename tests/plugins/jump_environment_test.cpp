@@ -122,13 +122,13 @@ TEST_F(JumpEnvironment, FinishReportsTheRewardAndEveryTerm) {
   EXPECT_LE(reward, 1.0);
   for (const char* term : {"penalty_joint_position_limits", "penalty_friction_cone", "penalty_workspace",
                            "penalty_lift_off_position", "penalty_touchdown_bounce", "penalty_action_limit",
-                           "landing_reward", "penalty_gate", "reward_error_xy"}) {
+                           "landing_reward", "cost_gate", "reward_error_xy"}) {
     EXPECT_TRUE(robot_.metrics.count(term)) << term;
   }
   // The robot never moved: the landing error is the whole target distance, and
   // the reward is the landing term times the penalty gate.
   EXPECT_NEAR(robot_.metrics["reward_error_xy"], 0.4, 1e-6);
-  EXPECT_NEAR(reward, robot_.metrics["landing_reward"] * robot_.metrics["penalty_gate"], 1e-12);
+  EXPECT_NEAR(reward, robot_.metrics["landing_reward"] * robot_.metrics["cost_gate"], 1e-12);
 }
 
 }  // namespace

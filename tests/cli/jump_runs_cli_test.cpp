@@ -1,0 +1,119 @@
+// `pronk run SCENARIO --policy ballistic`: whole jumps to targets through the
+// command a user runs, with the results files' schema (docs/results-format.md).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string output;
+};
+
+CommandRun pronk(const std::string& args) {
+  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
+  CommandRun out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+std::string source(const std::string& path) { return std::string(PRONK_SOURCE_DIR) + "/" + path; }
+std::string testScenario(const std::string& name) { return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name; }
+
+std::string outDir(const std::string& name) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/" + name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+nlohmann::json results(const std::string& dir) {
+  std::ifstream in(dir + "/results.json");
+  nlohmann::json j;
+  if (in) in >> j;
+  return j;
+}
+
+TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
+  const std::string dir = outDir("jump_forward");
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(dir);
+  ASSERT_TRUE(j.is_array()) << r.output;
+  ASSERT_EQ(j.size(), 1u);
+  const nlohmann::json& jump = j[0];
+  EXPECT_EQ(jump["status"], "ok");
+  EXPECT_FALSE(jump["failed"].get<bool>());
+  EXPECT_DOUBLE_EQ(jump["target"]["x"].get<double>(), 0.4);
+  // The scenario's tolerance is 8 cm; the landing point and the error agree.
+  const double dx = jump["landing"]["x"].get<double>() - 0.4, dy = jump["landing"]["y"].get<double>();
+  EXPECT_NEAR(jump["error_xy"].get<double>(), std::hypot(dx, dy), 1e-9);
+  EXPECT_LT(jump["error_xy"].get<double>(), 0.08);
+  EXPECT_LT(jump["error_yaw_deg"].get<double>(), 5.0);
+  EXPECT_TRUE(jump["ended_standing"].get<bool>());
+  // Every reward term, the events, planned vs detected lift-off within 20 ms.
+  EXPECT_EQ(jump["penalties"].size(), 14u) << jump["penalties"].dump();
+  const double planned = jump["events"]["planned_lift_off_time"].get<double>();
+  const double detected = jump["events"]["lift_off"].get<double>();
+  EXPECT_NEAR(detected, planned, 0.02);
+  EXPECT_GT(jump["events"]["touchdown"].get<double>(), detected);
+  EXPECT_GT(jump["reward"].get<double>(), 0.0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/results.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/" + jump["trace"].get<std::string>()));
+}
+
+TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRuns) {
+  const std::string dir = outDir("jump_impossible_up");
+  const CommandRun r = pronk("run " + testScenario("go1_impossible_up.xml") + " --policy ballistic --out " + dir);
+  EXPECT_EQ(r.status, 4) << r.output;  // an episode did not succeed
+  const nlohmann::json j = results(dir);
+  ASSERT_EQ(j.size(), 1u) << r.output;
+  EXPECT_EQ(j[0]["status"], "rejected");
+  EXPECT_NE(j[0]["failure_reason"].get<std::string>().find("apex_below_target"), std::string::npos);
+  EXPECT_EQ(j[0]["simulated_s"].get<double>(), 0.0);  // nothing was simulated
+  EXPECT_EQ(j[0]["trace"], "");
+  EXPECT_DOUBLE_EQ(j[0]["reward"].get<double>(), 0.0);
+}
+
+TEST(JumpRuns, SweepCasesAreSeededAndReproducible) {
+  const std::string a = outDir("jump_sweep_a"), b = outDir("jump_sweep_b");
+  const CommandRun ra = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --out " + a);
+  const CommandRun rb = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --out " + b);
+  const nlohmann::json ja = results(a), jb = results(b);
+  ASSERT_EQ(ja.size(), 2u) << ra.output;
+  ASSERT_EQ(jb.size(), 2u) << rb.output;
+  for (size_t i = 0; i < 2; ++i) {
+    const double x = ja[i]["target"]["x"].get<double>();
+    EXPECT_GE(x, 0.1);
+    EXPECT_LE(x, 0.4);
+    EXPECT_EQ(ja[i]["target"], jb[i]["target"]);
+    // The same case simulates the same way.
+    EXPECT_EQ(ja[i]["landing"], jb[i]["landing"]);
+  }
+  EXPECT_NE(ja[0]["target"]["x"], ja[1]["target"]["x"]);
+  const CommandRun bad = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep nope");
+  EXPECT_EQ(bad.status, 3) << bad.output;
+  EXPECT_NE(bad.output.find("no sweep named 'nope'; known: ahead"), std::string::npos) << bad.output;
+}
+
+TEST(JumpRuns, PolicyNeedsAnEnvironment) {
+  const CommandRun r = pronk("run " + source("scenarios/go1/stand.xml") + " --policy ballistic");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("has no <environment>"), std::string::npos) << r.output;
+  const CommandRun none = pronk("run " + source("scenarios/go1/forward.xml"));
+  EXPECT_EQ(none.status, 3) << none.output;
+  EXPECT_NE(none.output.find("--policy ballistic"), std::string::npos) << none.output;
+}
+
+}  // namespace
