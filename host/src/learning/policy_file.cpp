@@ -1,0 +1,355 @@
+// Policy files (docs/policy-format.md): JSON text <-> MlpPolicy. Reading is
+// strict: every key is known, typed and shaped, and every problem is an
+// InputError at the line where the offending key is written.
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "json_text.h"
+#include "policy_checks.h"
+#include "pronk/error.h"
+#include "pronk/policy.h"
+
+namespace pronk {
+
+namespace {
+
+using nlohmann::json;
+using policy_file::JsonPath;
+using policy_file::Problem;
+
+constexpr const char* kFormat = "pronk-policy";
+constexpr int kVersion = 1;
+
+// nlohmann's what() without its "[json.exception.parse_error.101] parse error
+// at line 2, column 11: " prefix: we say where ourselves.
+std::string nlohmannDetail(const std::string& what) {
+  std::string detail = what;
+  if (!detail.empty() && detail[0] == '[') {
+    const std::size_t end = detail.find("] ");
+    if (end != std::string::npos) detail = detail.substr(end + 2);
+  }
+  if (detail.rfind("parse error", 0) == 0) {
+    const std::size_t colon = detail.find(": ");
+    if (colon != std::string::npos) detail = detail.substr(colon + 2);
+  }
+  return detail;
+}
+
+// A JSON value as a message shows it: its type, and short scalars themselves.
+std::string describe(const json& v) {
+  if (v.is_string()) {
+    const std::string s = v.get<std::string>();
+    return "string " + (s.size() <= 40 ? json(s).dump() : json(s.substr(0, 40)).dump() + "...");
+  }
+  if (v.is_number() || v.is_boolean()) return std::string(v.type_name()) + " " + v.dump();
+  return v.type_name();
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+class PolicyReader {
+ public:
+  PolicyReader(const std::string& text, const std::string& name) : text_(text), name_(name) {}
+
+  MlpPolicy read() {
+    const json doc = parse();
+    checkNoDuplicateKeys();
+    const JsonPath root;
+    if (!doc.is_object()) fail(root, "a policy file is a JSON object, this is " + describe(doc));
+
+    checkFormatAndVersion(doc);
+    checkKeys(doc, root,
+              {"format", "version", "description", "provenance", "observation_size", "action_size",
+               "observation_normalization", "layers", "action_log_std"});
+
+    const int observation_size = positiveInt(required(doc, root, "observation_size"), root.key("observation_size"));
+    const int action_size = positiveInt(required(doc, root, "action_size"), root.key("action_size"));
+
+    MlpPolicy policy(readLayers(required(doc, root, "layers"), root.key("layers")));
+    if (policy.observationSize() != observation_size) {
+      fail(root.key("observation_size"), std::to_string(observation_size) + ", but layers[0].weights has " +
+                                             policy_file::counted(policy.observationSize(), "column") + " (inputs)");
+    }
+    if (policy.actionSize() != action_size) {
+      const std::string last = "layers[" + std::to_string(policy.layers().size() - 1) + "].weights";
+      fail(root.key("action_size"), std::to_string(action_size) + ", but " + last + " has " +
+                                        policy_file::counted(policy.actionSize(), "row") + " (outputs)");
+    }
+
+    if (doc.contains("observation_normalization")) {
+      const JsonPath at = root.key("observation_normalization");
+      const json& n = doc["observation_normalization"];
+      if (!n.is_object()) fail(at, "expected an object with mean and std, got " + describe(n));
+      checkKeys(n, at, {"mean", "std"});
+      Eigen::VectorXd mean = vector(required(n, at, "mean"), at.key("mean"));
+      Eigen::VectorXd std = vector(required(n, at, "std"), at.key("std"));
+      failIf(policy_file::normalizationProblem(mean, std, observation_size));
+      policy.setObservationNormalization(std::move(mean), std::move(std));
+    }
+    if (doc.contains("action_log_std")) {
+      Eigen::VectorXd log_std = vector(doc["action_log_std"], root.key("action_log_std"));
+      failIf(policy_file::logStdProblem(log_std, action_size));
+      policy.setActionLogStd(std::move(log_std));
+    }
+    if (doc.contains("description")) {
+      const json& d = doc["description"];
+      if (!d.is_string()) fail(root.key("description"), "expected a string, got " + describe(d));
+      policy.setDescription(d.get<std::string>());
+    }
+    if (doc.contains("provenance")) {
+      const json& p = doc["provenance"];
+      if (!p.is_object()) fail(root.key("provenance"), "expected an object, got " + describe(p));
+      policy.setProvenance(p);
+    }
+    return policy;
+  }
+
+ private:
+  [[noreturn]] void failAt(std::size_t offset, const std::string& message) const {
+    throw InputError({name_, policy_file::positionOf(text_, offset).line}, message);
+  }
+
+  // The message starts with the path of the key at fault.
+  [[noreturn]] void fail(const JsonPath& path, const std::string& message) const {
+    const std::string key = path.str();
+    failAt(policy_file::offsetOf(text_, path), key.empty() ? message : key + ": " + message);
+  }
+
+  void failIf(const std::optional<Problem>& problem) const {
+    if (problem) fail(problem->path, problem->message);
+  }
+
+  json parse() const {
+    try {
+      return json::parse(text_);
+    } catch (const json::parse_error& e) {
+      // e.byte counts from 1 and is the last character read: the culprit.
+      const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
+      const int column = policy_file::positionOf(text_, offset).column;
+      failAt(offset, "column " + std::to_string(column) + ": invalid JSON: " + nlohmannDetail(e.what()));
+    } catch (const json::out_of_range& e) {
+      // A number beyond the range of double; nlohmann gives no position.
+      const std::size_t offset = policy_file::findOverflowingNumber(text_).value_or(0);
+      const int column = policy_file::positionOf(text_, offset).column;
+      failAt(offset, "column " + std::to_string(column) + ": " + nlohmannDetail(e.what()) +
+                         " (beyond the range of a double)");
+    }
+  }
+
+  void checkNoDuplicateKeys() const {
+    if (const auto dup = policy_file::findDuplicateKey(text_)) {
+      failAt(dup->second, dup->path.str() + ": duplicate key (first written on line " +
+                              std::to_string(policy_file::positionOf(text_, dup->first).line) + ")");
+    }
+  }
+
+  void checkFormatAndVersion(const json& doc) const {
+    const JsonPath format = JsonPath().key("format");
+    if (!doc.contains("format")) {
+      fail(format, "missing; a policy file says \"format\": \"" + std::string(kFormat) + "\"");
+    }
+    if (doc["format"] != kFormat) {
+      fail(format, describe(doc["format"]) + " is not \"" + kFormat + "\": not a pronk policy file");
+    }
+    const JsonPath version = JsonPath().key("version");
+    const json& v = required(doc, JsonPath(), "version");
+    if (!v.is_number_integer()) fail(version, "expected an integer, got " + describe(v));
+    if (v != kVersion) {
+      fail(version, v.dump() + " is not supported; this pronk reads version " + std::to_string(kVersion));
+    }
+  }
+
+  // Unknown keys are errors (a misspelt optional key would otherwise be
+  // ignored); the first one written is reported.
+  void checkKeys(const json& object, const JsonPath& path, const std::vector<std::string>& known) const {
+    std::optional<std::pair<std::size_t, std::string>> first;
+    for (const auto& item : object.items()) {
+      if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+      const std::size_t offset = policy_file::offsetOf(text_, path.key(item.key()));
+      if (!first || offset < first->first) first = {offset, item.key()};
+    }
+    if (first) fail(path.key(first->second), "unknown key (known keys here: " + joined(known) + ")");
+  }
+
+  const json& required(const json& object, const JsonPath& path, const char* key) const {
+    const auto it = object.find(key);
+    if (it == object.end()) fail(path.key(key), "missing");
+    return *it;
+  }
+
+  int positiveInt(const json& v, const JsonPath& path) const {
+    if (!v.is_number_integer() || v.get<long long>() <= 0 || v.get<long long>() > INT_MAX) {
+      fail(path, "expected a positive integer, got " + describe(v));
+    }
+    return v.get<int>();
+  }
+
+  double number(const json& v, const JsonPath& path) const {
+    if (!v.is_number()) fail(path, "expected a number, got " + describe(v));
+    return v.get<double>();
+  }
+
+  Eigen::VectorXd vector(const json& v, const JsonPath& path) const {
+    if (!v.is_array()) fail(path, "expected an array of numbers, got " + describe(v));
+    Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) out[static_cast<Eigen::Index>(i)] = number(v[i], path.index(i));
+    return out;
+  }
+
+  // An array of rows, all as long as the first.
+  Eigen::MatrixXd matrix(const json& v, const JsonPath& path) const {
+    if (!v.is_array()) fail(path, "expected an array of rows, got " + describe(v));
+    Eigen::MatrixXd out;
+    for (std::size_t r = 0; r < v.size(); ++r) {
+      const json& row = v[r];
+      if (!row.is_array()) fail(path.index(r), "expected a row (an array of numbers), got " + describe(row));
+      if (r == 0) out.resize(static_cast<Eigen::Index>(v.size()), static_cast<Eigen::Index>(row.size()));
+      if (static_cast<Eigen::Index>(row.size()) != out.cols()) {
+        fail(path.index(r), policy_file::counted(static_cast<long long>(row.size()), "column") + ", expected " +
+                                std::to_string(out.cols()) + " as in row 0");
+      }
+      for (std::size_t c = 0; c < row.size(); ++c) {
+        out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = number(row[c], path.index(r).index(c));
+      }
+    }
+    return out;
+  }
+
+  std::vector<MlpLayer> readLayers(const json& v, const JsonPath& path) const {
+    if (!v.is_array()) fail(path, "expected an array of layers, got " + describe(v));
+    std::vector<MlpLayer> layers;
+    for (std::size_t l = 0; l < v.size(); ++l) {
+      const JsonPath at = path.index(l);
+      const json& layer = v[l];
+      if (!layer.is_object()) fail(at, "expected a layer object, got " + describe(layer));
+      checkKeys(layer, at, {"weights", "bias", "activation"});
+      MlpLayer out;
+      out.weights = matrix(required(layer, at, "weights"), at.key("weights"));
+      out.bias = vector(required(layer, at, "bias"), at.key("bias"));
+      const json& a = required(layer, at, "activation");
+      const std::string names = joined({activationName(Activation::Tanh), activationName(Activation::Relu),
+                                        activationName(Activation::Elu), activationName(Activation::Linear)});
+      if (!a.is_string()) fail(at.key("activation"), "expected one of " + names + ", got " + describe(a));
+      const auto activation = activationFromName(a.get<std::string>());
+      if (!activation) fail(at.key("activation"), "unknown activation " + a.dump() + " (known: " + names + ")");
+      out.activation = *activation;
+      layers.push_back(std::move(out));
+    }
+    failIf(policy_file::layersProblem(layers));
+    return layers;
+  }
+
+  const std::string& text_;
+  const std::string& name_;
+};
+
+// Pretty JSON whose flat arrays stay on one line: a weight row per line, so
+// the file is readable and a line number points at a row.
+template <class Json>
+void writeValue(std::string& out, const Json& v, int indent) {
+  const std::string inner(static_cast<std::size_t>(indent + 2), ' ');
+  const std::string outer(static_cast<std::size_t>(indent), ' ');
+  const bool nested = std::any_of(v.begin(), v.end(), [](const Json& e) { return e.is_structured(); });
+  if (v.is_object() && !v.empty()) {
+    out += "{\n";
+    bool first = true;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      out += first ? "" : ",\n";
+      first = false;
+      out += inner + Json(it.key()).dump() + ": ";
+      writeValue(out, it.value(), indent + 2);
+    }
+    out += "\n" + outer + "}";
+  } else if (v.is_array() && nested) {
+    out += "[\n";
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      out += (i ? ",\n" : "") + inner;
+      writeValue(out, v[i], indent + 2);
+    }
+    out += "\n" + outer + "]";
+  } else {
+    out += v.dump();  // nlohmann writes doubles with the shortest text that reads back exactly
+  }
+}
+
+nlohmann::ordered_json toJson(const Eigen::VectorXd& v) {
+  auto out = nlohmann::ordered_json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(v[i]);
+  return out;
+}
+
+}  // namespace
+
+MlpPolicy parsePolicy(const std::string& text, const std::string& name) { return PolicyReader(text, name).read(); }
+
+MlpPolicy loadPolicy(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0}, std::string("cannot read the policy file: ") + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parsePolicy(text.str(), path);
+}
+
+std::string policyToJson(const MlpPolicy& policy) {
+  nlohmann::ordered_json doc;
+  doc["format"] = kFormat;
+  doc["version"] = kVersion;
+  if (!policy.description().empty()) doc["description"] = policy.description();
+  if (!policy.provenance().empty()) doc["provenance"] = nlohmann::ordered_json(policy.provenance());
+  doc["observation_size"] = policy.observationSize();
+  doc["action_size"] = policy.actionSize();
+  if (policy.hasObservationNormalization()) {
+    doc["observation_normalization"]["mean"] = toJson(policy.observationMean());
+    doc["observation_normalization"]["std"] = toJson(policy.observationStd());
+  }
+  auto& layers = doc["layers"] = nlohmann::ordered_json::array();
+  for (const MlpLayer& layer : policy.layers()) {
+    nlohmann::ordered_json l;
+    l["activation"] = activationName(layer.activation);
+    auto& rows = l["weights"] = nlohmann::ordered_json::array();
+    for (Eigen::Index r = 0; r < layer.weights.rows(); ++r) rows.push_back(toJson(layer.weights.row(r).transpose()));
+    l["bias"] = toJson(layer.bias);
+    layers.push_back(std::move(l));
+  }
+  if (policy.hasActionLogStd()) doc["action_log_std"] = toJson(policy.actionLogStd());
+
+  std::string out;
+  try {
+    writeValue(out, doc, 0);
+  } catch (const nlohmann::json::exception& e) {  // e.g. a description that is not UTF-8
+    throw Error("policy: cannot be written as JSON: " + nlohmannDetail(e.what()));
+  }
+  return out + "\n";
+}
+
+void savePolicy(const MlpPolicy& policy, const std::string& path) {
+  const std::string text = policyToJson(policy);
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write the policy file " + partial + ": " + std::strerror(errno));
+    out << text;
+    out.close();
+    if (!out) {
+      std::filesystem::remove(partial);
+      throw Error("cannot write the policy file " + partial + ": " + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::filesystem::remove(partial);
+    throw Error("cannot replace the policy file " + path + ": " + ec.message());
+  }
+}
+
+}  // namespace pronk
