@@ -1,5 +1,9 @@
-// The policies `pronk run --policy` knows.
+// The policies `pronk run --policy` knows: the environment's analytic prior, or
+// a policy file (docs/policy-format.md).
+#include <memory>
+
 #include "jump_runs.h"
+#include "pronk/policy.h"
 
 namespace pronk::cli {
 
@@ -11,7 +15,19 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
     }
     return [](const std::vector<double>& observation, EnvironmentInstance& env) { return env.priorAction(observation); };
   }
-  throw InputError(SourceLocation{name, 0}, "policy files are not readable yet");
+  auto network = std::make_shared<const MlpPolicy>(loadPolicy(name));
+  if (network->observationSize() != factory.observation_size || network->actionSize() != factory.action_size) {
+    throw InputError(SourceLocation{name, 0}, "the policy maps " + std::to_string(network->observationSize()) +
+                                                  " numbers to " + std::to_string(network->actionSize()) +
+                                                  "; environment '" + factory.name + "' observes " +
+                                                  std::to_string(factory.observation_size) + " and takes " +
+                                                  std::to_string(factory.action_size));
+  }
+  return [network](const std::vector<double>& observation, EnvironmentInstance&) {
+    const Eigen::VectorXd a =
+        network->act(Eigen::Map<const Eigen::VectorXd>(observation.data(), static_cast<Eigen::Index>(observation.size())));
+    return std::vector<double>(a.data(), a.data() + a.size());
+  };
 }
 
 }  // namespace pronk::cli

@@ -117,3 +117,32 @@ TEST(JumpRuns, PolicyNeedsAnEnvironment) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(JumpRuns, PolicyFileDrivesTheEnvironment) {
+  const std::string dir = outDir("jump_policy_file");
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " +
+                             std::string(PRONK_CLI_TEST_DIR) + "/policies/mid_range.json --out " + dir);
+  EXPECT_TRUE(r.status == 0 || r.status == 4) << r.output;  // it jumps somewhere; the fixture is not trained
+  const nlohmann::json j = results(dir);
+  ASSERT_EQ(j.size(), 1u) << r.output;
+  const std::vector<double> action = j[0]["action"].get<std::vector<double>>();
+  ASSERT_EQ(action.size(), 13u);
+  EXPECT_DOUBLE_EQ(action[0], -2.5);  // the network's output reached the environment unchanged
+  for (size_t i = 1; i < 13; ++i) EXPECT_DOUBLE_EQ(action[i], 0.0);
+  // raw -2.5 of +-5 is a quarter of the way into T_th's range [0.4, 1.0] s
+  EXPECT_NEAR(j[0]["metrics"]["action_thrust_duration"].get<double>(), 0.55, 1e-9);
+}
+
+TEST(JumpRuns, PolicyFileOfTheWrongShapeIsABadInput) {
+  const std::string file = std::string(PRONK_CLI_TEST_DIR) + "/policies/wrong_size.json";
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + file);
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find(file + ": the policy maps 5 numbers to 13"), std::string::npos) << r.output;
+  const CommandRun missing = pronk("run " + source("scenarios/go1/forward.xml") + " --policy /nonexistent/p.json");
+  EXPECT_EQ(missing.status, 3) << missing.output;
+  EXPECT_NE(missing.output.find("/nonexistent/p.json"), std::string::npos) << missing.output;
+}
+
+}  // namespace
