@@ -11,6 +11,21 @@ bool isBuiltin(const ControllerSpec& spec) {
   return spec.plugin.empty() && std::find(names.begin(), names.end(), spec.factory) != names.end();
 }
 
+// When the scenario names the library a factory must come from (its plugin
+// name, or a path compared by file name), the factory found must be from it.
+void checkLibrary(const pronk_factory& factory, const char* kind, const std::string& plugin,
+                  const SourceLocation& where, const PluginRegistry& registry) {
+  if (plugin.empty()) return;
+  const PluginLibrary* library = registry.libraryOf(&factory);
+  const bool by_path = plugin.find('/') != std::string::npos;
+  const std::string wanted = by_path ? std::filesystem::path(plugin).filename().string() : plugin;
+  const std::string have = by_path ? std::filesystem::path(library->path()).filename().string() : library->name();
+  if (wanted != have) {
+    throw InputError(where, std::string(kind) + " '" + factory.name + "' comes from " + library->path() +
+                                " (plugin '" + library->name() + "'), not from plugin '" + plugin + "'");
+  }
+}
+
 const pronk_factory& findFactory(const ControllerSpec& spec, const PluginRegistry& registry) {
   const pronk_factory* factory = registry.find(PRONK_FACTORY_CONTROLLER, spec.factory);
   if (!factory) {
@@ -22,18 +37,7 @@ const pronk_factory& findFactory(const ControllerSpec& spec, const PluginRegistr
     throw InputError(spec.where, "no controller named '" + spec.factory + "' (built-in or in a loaded plugin); known: " +
                                      known);
   }
-  if (!spec.plugin.empty()) {
-    // The scenario names the library the factory must come from: its plugin
-    // name, or a path (compared by file name).
-    const PluginLibrary* library = registry.libraryOf(factory);
-    const bool by_path = spec.plugin.find('/') != std::string::npos;
-    const std::string wanted = by_path ? std::filesystem::path(spec.plugin).filename().string() : spec.plugin;
-    const std::string have = by_path ? std::filesystem::path(library->path()).filename().string() : library->name();
-    if (wanted != have) {
-      throw InputError(spec.where, "controller '" + spec.factory + "' comes from " + library->path() + " (plugin '" +
-                                       library->name() + "'), not from plugin '" + spec.plugin + "'");
-    }
-  }
+  checkLibrary(*factory, "controller", spec.plugin, spec.where, registry);
   return *factory;
 }
 
@@ -49,16 +53,7 @@ const pronk_factory& findEnvironment(const EnvironmentSpec& spec, const PluginRe
     throw InputError(spec.where, "no environment named '" + spec.factory + "' in the loaded plugins" +
                                      (known.empty() ? std::string(" (none has one)") : "; known: " + known));
   }
-  if (!spec.plugin.empty()) {
-    const PluginLibrary* library = registry.libraryOf(factory);
-    const bool by_path = spec.plugin.find('/') != std::string::npos;
-    const std::string wanted = by_path ? std::filesystem::path(spec.plugin).filename().string() : spec.plugin;
-    const std::string have = by_path ? std::filesystem::path(library->path()).filename().string() : library->name();
-    if (wanted != have) {
-      throw InputError(spec.where, "environment '" + spec.factory + "' comes from " + library->path() +
-                                       " (plugin '" + library->name() + "'), not from plugin '" + spec.plugin + "'");
-    }
-  }
+  checkLibrary(*factory, "environment", spec.plugin, spec.where, registry);
   return *factory;
 }
 

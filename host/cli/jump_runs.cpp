@@ -35,7 +35,11 @@ double yawOf(const Eigen::Vector4d& q_wxyz) {
 
 double wrap(double a) { return std::remainder(a, 2 * M_PI); }
 
-double nanToZero(const double* v) { return v && std::isfinite(*v) ? *v : NAN; }
+// A metric of the trace, NaN when absent or not finite (JSON null, empty CSV cell).
+double metricOrNaN(const Trace& trace, const char* name) {
+  const double* v = trace.findMetric(name);
+  return v && std::isfinite(*v) ? *v : NAN;
+}
 
 // Where one jump ended, from its trace alone (the host's view, the same for any
 // environment): the trunk's displacement in the start heading frame.
@@ -136,7 +140,7 @@ nlohmann::json toJson(const JumpReport& r, const std::string& trace_file) {
   }
   for (const char* name : {"planned_lift_off_time", "planned_apex_time", "planned_touchdown_time", "apex_time",
                            "rest_time"}) {
-    events[name] = number(nanToZero(trace.findMetric(name)));
+    events[name] = number(metricOrNaN(trace, name));
   }
   j["events"] = events;
   j["event_log"] = nlohmann::json::array();
@@ -163,7 +167,7 @@ void writeResultsCsv(const std::vector<JumpReport>& reports, const std::string& 
     const Trace& trace = r.result.episode.trace;
     const TargetSpec& t = r.episode.target;
     auto ev = [&](const char* name) { return csvCell(event(trace, name) ? event(trace, name)->time : NAN); };
-    auto m = [&](const char* name) { return csvCell(nanToZero(trace.findMetric(name))); };
+    auto m = [&](const char* name) { return csvCell(metricOrNaN(trace, name)); };
     std::string reason = r.reason;
     for (char& c : reason)
       if (c == '"') c = '\'';

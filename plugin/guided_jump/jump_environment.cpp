@@ -143,22 +143,12 @@ Eigen::Quaterniond quaternionOf(const pronk_robot_state& s) {
       .normalized();
 }
 
-double yawOf(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
 
 Eigen::Matrix3d rotationZYX(double roll, double pitch, double yaw) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
 }
-
-// A frame on the take-off surface: origin below the CoM, x along the trunk's heading.
-struct StartFrame {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();      // world
-  Eigen::Matrix3d heading = Eigen::Matrix3d::Identity();  // S -> world
-  Eigen::Vector3d point(const double* world) const { return heading.transpose() * (vec(world) - origin); }
-  Eigen::Vector3d direction(const double* world) const { return heading.transpose() * vec(world); }
-};
 
 class JumpEnvironment {
  public:
@@ -201,7 +191,7 @@ class JumpEnvironment {
     if (state.joint_count != n_ || state.foot_count != feet_) throw InvalidArgument("the state does not fit the robot");
     for (int i = 0; i < kObservationSize; ++i) task_[i] = observation[i] = task[i];
     reset_time_ = state.time;
-    start_ = frameAt(state);
+    start_ = takeOffFrame(host_, state);
     const Eigen::Matrix3d R = quaternionOf(state).toRotationMatrix();
     standing_height_ = state.com_position[2] - start_.origin.z();
     com_to_trunk_ = R.transpose() * (vec(state.base_position) - vec(state.com_position));
@@ -292,9 +282,9 @@ class JumpEnvironment {
     metric("predicted_landing_y", landing ? landing->y() : NAN);
     metric("predicted_landing_z", landing ? landing->z() - standing_height_ : NAN);
     metric("action_excess", mapped.totalRawExcess());
+    const jump::ActionVector physical = jump::toVector(mapped.action);
     for (int i = 0; i < kActionSize; ++i) {
-      metric(std::string("action_") + jump::actionParameterName(static_cast<jump::ActionParameter>(i)),
-             jump::toVector(mapped.action)[i]);
+      metric(std::string("action_") + jump::actionParameterName(static_cast<jump::ActionParameter>(i)), physical[i]);
     }
 
     // The safety filter: nothing runs that cannot work.
@@ -311,7 +301,6 @@ class JumpEnvironment {
     }
 
     JumpSettings js = settings_.jump;
-    const jump::ActionVector physical = jump::toVector(mapped.action);
     js.action.assign(physical.begin(), physical.end());
     js.azimuth = azimuth;
     controller_ = std::make_unique<JumpController>(host_, js);
@@ -389,24 +378,6 @@ class JumpEnvironment {
         host_->report_metric) {
       host_->report_metric(host_->host, name.c_str(), value);
     }
-  }
-
-  // The take-off surface below the CoM (the lowest feet in contact, less the foot radius).
-  StartFrame frameAt(const pronk_robot_state& s) const {
-    StartFrame S;
-    S.heading = Eigen::AngleAxisd(yawOf(quaternionOf(s).toRotationMatrix()), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    double ground = 0, count = 0;
-    for (int f = 0; f < feet_; ++f) {
-      if (!s.foot_in_contact[f]) continue;
-      ground += s.foot_position[3 * f + 2] - settings_.reward.foot_radius;
-      count += 1;
-    }
-    if (count == 0) {
-      for (int f = 0; f < feet_; ++f) ground += s.foot_position[3 * f + 2] - settings_.reward.foot_radius;
-      count = feet_;
-    }
-    S.origin = Eigen::Vector3d(s.com_position[0], s.com_position[1], ground / count);
-    return S;
   }
 
   // The controller's S once the thrust has begun, the reset's before.

@@ -121,24 +121,29 @@ void JumpController::reset(const pronk_robot_state& state) {
   phase_ = has_action_ ? JumpPhase::kStand : JumpPhase::kHold;
 }
 
+StartFrame takeOffFrame(const pronk_host_api* host, const pronk_robot_state& s) {
+  StartFrame S;
+  S.heading = Eigen::AngleAxisd(rpyFromRotation(rotationOf(s)).z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  double ground = 0;
+  int counted = 0;
+  for (int pass = 0; pass < 2 && counted == 0; ++pass) {  // feet in contact; all feet when none is
+    for (int f = 0; f < s.foot_count; ++f) {
+      if (pass == 0 && !s.foot_in_contact[f]) continue;
+      const double r = host->foot_radius ? host->foot_radius(host->host, f) : 0.0;
+      ground += s.foot_position[3 * f + 2] - (std::isfinite(r) ? r : 0.0);
+      ++counted;
+    }
+  }
+  S.origin = Eigen::Vector3d(s.com_position[0], s.com_position[1], counted ? ground / counted : 0.0);
+  return S;
+}
+
 void JumpController::startThrust(const pronk_robot_state& s) {
   const Eigen::Matrix3d R = rotationOf(s);
-  const double yaw0 = std::atan2(R(1, 0), R(0, 0));
-  heading_ = Eigen::AngleAxisd(yaw0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  // The take-off surface: the lowest point of the feet in contact (all feet when none is).
-  double ground = 0, weight = 0;
-  for (int f = 0; f < feet_; ++f) {
-    if (!s.foot_in_contact[f]) continue;
-    const double r = host_->foot_radius ? host_->foot_radius(host_->host, f) : 0.0;
-    ground += s.foot_position[3 * f + 2] - (std::isfinite(r) ? r : 0.0);
-    weight += 1;
-  }
-  if (weight == 0) {
-    for (int f = 0; f < feet_; ++f) ground += s.foot_position[3 * f + 2];
-    weight = feet_;
-  }
-  ground /= weight;
-  origin_ = Eigen::Vector3d(s.com_position[0], s.com_position[1], ground);
+  const StartFrame S = takeOffFrame(host_, s);
+  heading_ = S.heading;
+  origin_ = S.origin;
+  const double ground = origin_.z();
   standing_height_ = s.com_position[2] - ground;
   const Eigen::Vector3d com_start_S(0, 0, s.com_position[2] - ground);
   plan_ = std::make_unique<jump::ThrustPlan>(action_, settings_.azimuth, com_start_S, Eigen::Vector3d::Zero());
@@ -255,51 +260,63 @@ void JumpController::landingReference(const pronk_robot_state& s) {
   qd_ref_.setZero();
 }
 
+void JumpController::applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force,
+                                     const Eigen::Vector3d& moment, Eigen::Ref<Eigen::VectorXd> tau) {
+  std::vector<int> contact;
+  for (int f = 0; f < feet_; ++f) {
+    if (s.foot_in_contact[f]) contact.push_back(f);
+  }
+  if (contact.empty()) return;
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
+  for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
+  const Eigen::Matrix3Xd forces = distributeWrench(points, vec(s.com_position), force, moment);
+  for (size_t i = 0; i < contact.size(); ++i) {
+    if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
+      throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
+    }
+    tau -= jacobian_.rightCols(n_).transpose() * forces.col(static_cast<Eigen::Index>(i));
+  }
+}
+
+void JumpController::saturate(Eigen::Ref<Eigen::VectorXd> tau) {
+  commanded_ = tau;
+  for (int j = 0; j < n_; ++j) {
+    if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
+    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
+  }
+}
+
 void JumpController::landingTorques(const pronk_robot_state& s, double kp, double* torque) {
   Eigen::Map<const Eigen::VectorXd> q(s.q, n_), qd(s.qd, n_);
   Eigen::Map<Eigen::VectorXd> tau(torque, n_);
   tau = kp * (q_ref_ - q) + settings_.hold.kd * (qd_ref_ - qd);
-  std::vector<int> contact;
   double ground = 0;
+  int down = 0;
   for (int f = 0; f < feet_; ++f) {
     if (!s.foot_in_contact[f]) continue;
-    contact.push_back(f);
     const double r = host_->foot_radius ? host_->foot_radius(host_->host, f) : 0.0;
     ground += s.foot_position[3 * f + 2] - (std::isfinite(r) ? r : 0.0);
+    ++down;
   }
-  if (!contact.empty() && settings_.hold.gravity_compensation) {
-    ground /= double(contact.size());
+  if (down > 0 && settings_.hold.gravity_compensation) {
     // The body wrench that stops the CoM where it touched down, at the standing
     // height, with a level trunk: critically damped, friction-limited.
     const Eigen::Vector3d c = vec(s.com_position), v = vec(s.com_velocity);
     Eigen::Vector3d goal = *touchdown_com_;
-    goal.z() = ground + standing_height_;
+    goal.z() = ground / down + standing_height_;
     const double wn = kLandingFrequency;
     const Eigen::Vector3d a_des = wn * wn * (goal - c) - 2.0 * wn * v;
     Eigen::Vector3d force = mass_ * (a_des - gravity_);
     force.z() = std::max(force.z(), 0.0);
     const double horizontal = force.head<2>().norm(), cap = kLandingFriction * force.z();
     if (horizontal > cap) force.head<2>() *= cap / horizontal;
-    const Eigen::Matrix3d R = rotationOf(s);
-    const Eigen::Vector3d rpy = rpyFromRotation(R);
+    const Eigen::Vector3d rpy = rpyFromRotation(rotationOf(s));
     const Eigen::Matrix3d yaw = Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Vector3d moment = mass_ * (yaw * Eigen::Vector3d(-kLandingTilt * rpy.x(), -kLandingTilt * rpy.y(), 0.0) -
                                             kLandingTiltDamping * vec(s.base_angular_velocity));
-    Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
-    for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
-    const Eigen::Matrix3Xd forces = distributeWrench(points, c, force, moment);
-    for (size_t i = 0; i < contact.size(); ++i) {
-      if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
-        throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
-      }
-      tau -= jacobian_.rightCols(n_).transpose() * forces.col(static_cast<Eigen::Index>(i));
-    }
+    applyBodyWrench(s, force, moment, tau);
   }
-  commanded_ = tau;
-  for (int j = 0; j < n_; ++j) {
-    if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
-    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
-  }
+  saturate(tau);
 }
 
 void JumpController::jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref,
@@ -308,29 +325,8 @@ void JumpController::jointTorques(const pronk_robot_state& s, double kp, const E
   Eigen::Map<const Eigen::VectorXd> q(s.q, n_), qd(s.qd, n_);
   Eigen::Map<Eigen::VectorXd> tau(torque, n_);
   tau = kp * (q_ref - q) + settings_.hold.kd * (qd_ref - qd);
-  if (gravity) {
-    std::vector<int> contact;
-    for (int f = 0; f < feet_; ++f) {
-      if (s.foot_in_contact[f]) contact.push_back(f);
-    }
-    if (!contact.empty()) {
-      Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
-      for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
-      const Eigen::Matrix3Xd forces = distributeWrench(points, vec(s.com_position), mass_ * (com_acceleration - gravity_),
-                                                       Eigen::Vector3d::Zero());
-      for (size_t i = 0; i < contact.size(); ++i) {
-        if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
-          throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
-        }
-        tau -= jacobian_.rightCols(n_).transpose() * forces.col(static_cast<Eigen::Index>(i));
-      }
-    }
-  }
-  commanded_ = tau;
-  for (int j = 0; j < n_; ++j) {
-    if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
-    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
-  }
+  if (gravity) applyBodyWrench(s, mass_ * (com_acceleration - gravity_), Eigen::Vector3d::Zero(), tau);
+  saturate(tau);
 }
 
 void JumpController::compute(const pronk_robot_state& s, double* torque) {

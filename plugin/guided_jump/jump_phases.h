@@ -68,6 +68,21 @@ double smoothstep(double s);
 // ZYX Euler angles (roll, pitch, yaw) of a rotation R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R);
 
+// A frame on the take-off surface: origin below the CoM at the mean height of
+// the feet in contact less their radius (all feet when none is), z up, x along
+// the trunk's heading. The jump's start frame S.
+struct StartFrame {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();      // world
+  Eigen::Matrix3d heading = Eigen::Matrix3d::Identity();  // S -> world
+  Eigen::Vector3d point(const double* world) const {
+    return heading.transpose() * (Eigen::Vector3d(world[0], world[1], world[2]) - origin);
+  }
+  Eigen::Vector3d direction(const double* world) const {
+    return heading.transpose() * Eigen::Vector3d(world[0], world[1], world[2]);
+  }
+};
+StartFrame takeOffFrame(const pronk_host_api* host, const pronk_robot_state& state);
+
 class JumpController {
  public:
   static constexpr double kBlendTime = 0.1;     // s, tuck and extension smoothsteps
@@ -111,6 +126,12 @@ class JumpController {
   // Landing: joint PD plus the body wrench that stops the CoM where it touched
   // down, levels the trunk and carries the weight, spread over the feet in contact.
   void landingTorques(const pronk_robot_state& s, double kp, double* torque);
+  // tau -= sum over the feet in contact of J_i^T f_i, f = the minimum-norm forces
+  // that put (force, moment about the CoM) on the body (force_distribution.h).
+  void applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force, const Eigen::Vector3d& moment,
+                       Eigen::Ref<Eigen::VectorXd> tau);
+  // Keeps tau as commandedTorque(), then clamps it to the effort limits (throws if not finite).
+  void saturate(Eigen::Ref<Eigen::VectorXd> tau);
 
   const pronk_host_api* host_;
   JumpSettings settings_;

@@ -9,27 +9,14 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
+#include "pronk_command.h"
+
 namespace {
 
-struct Outcome {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-Outcome pronk(const std::string& args) {
-  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
-  Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
-std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
-std::string cliScenario(const std::string& name) { return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name; }
+using pronk_test::cliScenario;
+using pronk_test::Outcome;
+using pronk_test::pronk;
+using pronk_test::source;
 
 nlohmann::json runAndRead(const std::string& scenario, const std::string& name, int expected_status,
                           const std::string& extra = "") {

@@ -9,33 +9,18 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
+
+#include "pronk_command.h"
 #include <vector>
 
 namespace {
 
-struct JumpRun {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-JumpRun runPronkCommand(const std::string& args) {
-  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
-  JumpRun out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
-std::string jumpScenario(const std::string& name) { return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name; }
+std::string jumpScenario(const std::string& name) { return pronk_test::cliScenario(name); }
 
 nlohmann::json runJump(const std::string& scenario, const std::string& name) {
   const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/" + name;
   std::filesystem::remove_all(dir);
-  const JumpRun o = runPronkCommand("run " + jumpScenario(scenario) + " --out " + dir);
+  const pronk_test::Outcome o = pronk_test::pronk("run " + jumpScenario(scenario) + " --out " + dir);
   EXPECT_EQ(o.status, 0) << o.output;
   std::ifstream in(dir + "/results.json");
   EXPECT_TRUE(in.good()) << o.output;
@@ -106,7 +91,7 @@ TEST(GuidedJumpCli, ForwardJumpLandsAhead) {
 }
 
 TEST(GuidedJumpCli, ActionOfTheWrongLengthIsRefused) {
-  const JumpRun o = runPronkCommand("run " + jumpScenario("go1_guided_jump_bad_action.xml"));
+  const pronk_test::Outcome o = pronk_test::pronk("run " + jumpScenario("go1_guided_jump_bad_action.xml"));
   EXPECT_NE(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("'action' needs 13 numbers"), std::string::npos) << o.output;
 }

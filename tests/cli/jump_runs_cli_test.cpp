@@ -10,27 +10,14 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "pronk_command.h"
+
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string output;
-};
-
-CommandRun pronk(const std::string& args) {
-  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
-  CommandRun out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
-std::string source(const std::string& path) { return std::string(PRONK_SOURCE_DIR) + "/" + path; }
-std::string testScenario(const std::string& name) { return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name; }
+using pronk_test::pronk;
+using pronk_test::source;
+using CommandRun = pronk_test::Outcome;
+std::string testScenario(const std::string& name) { return pronk_test::cliScenario(name); }
 
 std::string outDir(const std::string& name) {
   const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/" + name;

@@ -45,6 +45,12 @@ std::unique_ptr<Controller> makeBuiltinController(const std::string& name, const
 // minimum-norm distribution of m*(-g) (forces and moments about the CoM).
 Eigen::VectorXd gravityCompensation(const World& world, const RobotState& state);
 
+// Checks a factory's kind and the sizes it declares (joint count, control
+// period) against the world it is to drive; throws Error naming the factory and
+// `origin` (its library). Returns the factory.
+const pronk_factory& checkFactoryFitsWorld(const pronk_factory& factory, pronk_factory_kind kind,
+                                           const std::string& origin, const World& world);
+
 // Binds a World (and the trace events go to) to the plugin ABI's host API.
 // The returned object must outlive the plugin instance created with it.
 class HostApi {

@@ -27,25 +27,12 @@ class EnvironmentTicks : public Controller {
   bool done_ = false;
 };
 
-void checkFactory(const pronk_factory& factory, const std::string& origin, const World& world) {
-  const std::string who = std::string("environment '") + factory.name + "' (" + origin + ")";
-  if (factory.kind != PRONK_FACTORY_ENVIRONMENT || !factory.environment) throw Error(who + " is not an environment");
-  if (factory.joint_count != 0 && factory.joint_count != world.jointCount()) {
-    throw Error(who + " works with " + std::to_string(factory.joint_count) + " joints; the robot has " +
-                std::to_string(world.jointCount()));
-  }
-  if (factory.control_period != 0 && std::abs(factory.control_period - world.controlPeriod()) > 1e-12) {
-    throw Error(who + " runs every " + std::to_string(factory.control_period) +
-                " s; the scenario's control period is " + std::to_string(world.controlPeriod()) + " s");
-  }
-}
-
 }  // namespace
 
 EnvironmentEpisodeResult runEnvironmentEpisode(World& world, const pronk_factory& factory, const std::string& origin,
                                                const ResolvedParams& params, const std::vector<double>& task,
                                                uint64_t seed, const Policy& policy, const EpisodeOptions& options) {
-  checkFactory(factory, origin, world);
+  checkFactoryFitsWorld(factory, PRONK_FACTORY_ENVIRONMENT, origin, world);
   EnvironmentEpisodeResult out;
   out.task = task;
   Trace plugin;  // what the environment reports: events and metrics

@@ -149,12 +149,12 @@ AbiStateView::AbiStateView(const RobotState& s) {
   view_.foot_in_contact = s.foot_in_contact.data();
 }
 
-namespace {
-
-// Checks the sizes a factory declares against the world it is to drive.
-const pronk_factory& checkedFactory(const pronk_factory& factory, const std::string& origin, const World& world) {
-  const std::string who = std::string("controller '") + factory.name + "' (" + origin + ")";
-  if (factory.kind != PRONK_FACTORY_CONTROLLER || !factory.controller) throw Error(who + " is not a controller");
+const pronk_factory& checkFactoryFitsWorld(const pronk_factory& factory, pronk_factory_kind kind,
+                                           const std::string& origin, const World& world) {
+  const std::string kind_name = factoryKindName(kind);
+  const std::string who = kind_name + " '" + factory.name + "' (" + origin + ")";
+  const bool has_ops = kind == PRONK_FACTORY_CONTROLLER ? factory.controller != nullptr : factory.environment != nullptr;
+  if (factory.kind != static_cast<uint32_t>(kind) || !has_ops) throw Error(who + " is not a " + kind_name);
   if (factory.joint_count != 0 && factory.joint_count != world.jointCount()) {
     throw Error(who + " works with " + std::to_string(factory.joint_count) + " joints; the robot has " +
                 std::to_string(world.jointCount()));
@@ -166,12 +166,10 @@ const pronk_factory& checkedFactory(const pronk_factory& factory, const std::str
   return factory;
 }
 
-}  // namespace
-
 PluginController::PluginController(const pronk_factory& factory, const std::string& origin,
                                    const ResolvedParams& params, const World& world, Trace* trace)
     : host_(world, trace),
-      instance_(std::make_unique<ControllerInstance>(checkedFactory(factory, origin, world), origin, *host_.api(),
+      instance_(std::make_unique<ControllerInstance>(checkFactoryFitsWorld(factory, PRONK_FACTORY_CONTROLLER, origin, world), origin, *host_.api(),
                                                      params)) {}
 
 void PluginController::reset(const RobotState& state) {

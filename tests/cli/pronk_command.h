@@ -1,0 +1,34 @@
+// Running the `pronk` executable the way a user does, for the CLI tests.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace pronk_test {
+
+struct Outcome {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs `pronk ARGS` and returns its exit status and output.
+inline Outcome pronk(const std::string& args) {
+  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
+  Outcome out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+inline std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
+inline std::string cliScenario(const std::string& name) {
+  return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name;
+}
+
+}  // namespace pronk_test
