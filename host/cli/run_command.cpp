@@ -37,9 +37,6 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
                 (scenario.environment ? " runs its controller here (--controller replaces the environment)"
                                       : " has no <environment> for a policy to drive"));
   }
-  if (scenario.platform.controller.factory.empty()) {
-    throw Error("--controller: " + options.scenario + " has no <controller>; name one (e.g. --controller stand)");
-  }
   if (!options.controller.empty()) {
     scenario.platform.controller = ControllerSpec{options.controller, "", {}, {"--controller", 0}};
   }

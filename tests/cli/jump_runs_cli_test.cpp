@@ -133,3 +133,14 @@ TEST(JumpRuns, PolicyFileOfTheWrongShapeIsABadInput) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(JumpRuns, ControllerFlagRunsAControllerInsteadOfTheEnvironment) {
+  // forward.xml has an <environment> and no <controller>: --controller still runs one.
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --controller stand --duration 0.2");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("controller stand"), std::string::npos) << r.output;
+}
+
+}  // namespace
