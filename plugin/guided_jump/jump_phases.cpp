@@ -253,8 +253,7 @@ void JumpController::landingReference(const pronk_robot_state& s) {
     } else {
       // Reach for the ground: the stance foot under a level trunk, from the
       // trunk as it is (a pitched trunk would hold a stance-joint foot in the air).
-      q_ref_.segment<3>(3 * f) =
-          legIk(f, R.transpose() * (R_des * stance_feet_.col(f) - Eigen::Vector3d(0, 0, kLandingReach)));
+      q_ref_.segment<3>(3 * f) = legIk(f, R.transpose() * R_des * stance_feet_.col(f));
     }
   }
   qd_ref_.setZero();

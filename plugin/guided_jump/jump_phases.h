@@ -95,7 +95,6 @@ class JumpController {
   static constexpr double kLandingFriction = 0.6;
   static constexpr double kLandingTilt = 4.0;
   static constexpr double kLandingTiltDamping = 0.4;
-  static constexpr double kLandingReach = 0.0;  // m below the stance a foot in the air reaches for the ground
 
   // Throws InvalidArgument for an action of the wrong size or one the method rejects.
   JumpController(const pronk_host_api* host, const JumpSettings& settings);
