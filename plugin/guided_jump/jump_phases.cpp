@@ -252,8 +252,12 @@ void JumpController::landingReference(const pronk_robot_state& s) {
       q_ref_.segment<3>(3 * f) = legIk(f, target);
     } else {
       // Reach for the ground: the stance foot under a level trunk, from the
-      // trunk as it is (a pitched trunk would hold a stance-joint foot in the air).
-      q_ref_.segment<3>(3 * f) = legIk(f, R.transpose() * R_des * stance_feet_.col(f));
+      // trunk as it is (a pitched trunk would hold a stance-joint foot in the air),
+      // and down to the level of the feet that are down (a trunk that sits pitched
+      // would otherwise keep one foot hanging above the ground for good).
+      Eigen::Vector3d reach = R_des * stance_feet_.col(f);
+      if (down > 0) reach.z() = std::min(reach.z(), ground / down - kGroundReach - s.base_position[2]);
+      q_ref_.segment<3>(3 * f) = legIk(f, R.transpose() * reach);
     }
   }
   qd_ref_.setZero();

@@ -93,6 +93,7 @@ class JumpController {
   // (N m / rad / kg and N m s / rad / kg).
   static constexpr double kLandingFrequency = 5.0;
   static constexpr double kLandingFriction = 0.6;
+  static constexpr double kGroundReach = 0.01;  // m below the feet that are down, for a foot in the air
   static constexpr double kLandingTilt = 4.0;
   static constexpr double kLandingTiltDamping = 0.4;
 

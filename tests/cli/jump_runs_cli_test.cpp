@@ -60,6 +60,23 @@ TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
   EXPECT_TRUE(std::filesystem::exists(dir + "/" + jump["trace"].get<std::string>()));
 }
 
+TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
+  // The paper's diagonal jump: 0.3 m forward, 0.2 m left, 45 deg of yaw. Its
+  // scenario's tolerances (5 cm, 12 deg) make a miss exit 4.
+  const std::string dir = outDir("jump_diagonal");
+  const CommandRun r = pronk("run " + source("scenarios/go1/diagonal.xml") + " --policy ballistic --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(dir);
+  ASSERT_EQ(j.size(), 1u) << r.output;
+  const nlohmann::json& jump = j[0];
+  EXPECT_EQ(jump["status"], "ok");
+  EXPECT_LT(jump["error_xy"].get<double>(), 0.05);
+  EXPECT_LT(jump["error_yaw_deg"].get<double>(), 12.0);
+  EXPECT_NEAR(jump["landing"]["yaw"].get<double>(), 45.0 * M_PI / 180.0, 12.0 * M_PI / 180.0);  // rad
+  EXPECT_TRUE(jump["ended_standing"].get<bool>());
+  EXPECT_NEAR(jump["events"]["lift_off"].get<double>(), jump["events"]["planned_lift_off_time"].get<double>(), 0.02);
+}
+
 TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRuns) {
   const std::string dir = outDir("jump_impossible_up");
   const CommandRun r = pronk("run " + testScenario("go1_impossible_up.xml") + " --policy ballistic --out " + dir);

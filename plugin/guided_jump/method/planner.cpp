@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <Eigen/LU>
 #include <stdexcept>
 
 #include "method/orientation_trajectory.h"
@@ -139,14 +140,6 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
   const ParameterRange& d_range = ranges[P::kExplosiveDistance];
   const double rv_cap = std::max(rv_range.min, std::min(cfg.max_bezier_speed_mps, rv_range.max));
 
-  // Lift-off point for the current (theta_v, d) guess.
-  auto liftOffPoint = [&](double theta, double d) {
-    double ahead = 0.0;
-    if (!in_place) ahead = std::min(std::max(cand.ahead, d * std::cos(theta)), 0.5 * h_total);
-    Eigen::Vector3d c = c0 + ahead * u;
-    c.z() = lift_off_z;
-    return c;
-  };
   // Bezier speed, speed ratio and explosive distance for a lift-off speed.
   struct Split {
     double r_v, k, d, d_needed;
@@ -159,22 +152,41 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
     s.d = std::max(d_range.min, s.d_needed);
     return s;
   };
+  // Lift-off point for the current guess of the lift-off velocity v (its
+  // elevation theta, its speed) and explosive distance d.
+  auto liftOffPoint = [&](double theta, double speed, double d) {
+    double ahead = 0.0;
+    if (!in_place) {
+      // A still start: the Bezier lift-off is T/3 v_b ahead of the start CoM, so
+      // P2 is above P0 and the CoM starts without horizontal acceleration.
+      const double still = (cand.thrust_duration / 3.0 * splitSpeed(speed).r_v + d) * std::cos(theta);
+      ahead = std::min(std::isnan(cand.ahead) ? still : std::max(cand.ahead, d * std::cos(theta)), 0.5 * h_total);
+    }
+    Eigen::Vector3d c = c0 + ahead * u;
+    c.z() = lift_off_z;
+    return c;
+  };
 
-  // Fixed point on (theta_v, d): the lift-off point depends on them only
-  // through the offset rule; the ballistic solution below is exact either way.
+  // Fixed point on the lift-off velocity and d: the lift-off point depends on
+  // them only through the offset rule; the ballistic solution below is exact
+  // either way.
   double theta = in_place ? kPi / 2.0 : kPi / 4.0;
+  double guess_speed = 0.0;
   double d = d_range.min;
   for (int iter = 0; iter < 200; ++iter) {
-    const Member m = chooseMember(liftOffPoint(theta, d), plan.target_com, in_place, cfg);
+    const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, cfg);
     if (!m.ok) break;
     const double theta_new = std::atan2(m.velocity.z(), m.velocity.dot(u));
-    const double d_new = std::min(splitSpeed(m.velocity.norm()).d, d_range.max);
-    const bool done = std::abs(theta_new - theta) < 1e-13 && std::abs(d_new - d) < 1e-13;
+    const double speed_new = m.velocity.norm();
+    const double d_new = std::min(splitSpeed(speed_new).d, d_range.max);
+    const bool done = std::abs(theta_new - theta) < 1e-13 && std::abs(d_new - d) < 1e-13 &&
+                      std::abs(speed_new - guess_speed) < 1e-13;
     theta = 0.5 * (theta + theta_new);
+    guess_speed = 0.5 * (guess_speed + speed_new);
     d = 0.5 * (d + d_new);
     if (done) break;
   }
-  const Eigen::Vector3d c_e = liftOffPoint(theta, d);
+  const Eigen::Vector3d c_e = liftOffPoint(theta, guess_speed, d);
   const Member m = chooseMember(c_e, plan.target_com, in_place, cfg);
   const double speed = m.velocity.norm();
   const Split split = splitSpeed(speed);
@@ -277,6 +289,7 @@ const char* planLimitName(PlanLimit limit) {
     case PlanLimit::kActionRange: return "action_range";
     case PlanLimit::kExplosive: return "explosive";
     case PlanLimit::kLegWorkspace: return "leg_workspace";
+    case PlanLimit::kSupport: return "support";
   }
   return "unknown";
 }
@@ -295,6 +308,47 @@ std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, doubl
       std::ostringstream msg;
       msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
           << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+      return msg.str();
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double azimuth,
+                                               const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
+                                               const std::array<Eigen::Vector3d, kLegCount>& feet,
+                                               const Eigen::Vector3d& gravity, double min_share, int path_samples) {
+  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
+  double ground = 0.0;
+  // Rows: total vertical force, and its moments about the x and y axes; the
+  // minimum-norm shares are A^T (A A^T)^-1 b.
+  Eigen::Matrix<double, 3, kLegCount> A;
+  for (int i = 0; i < kLegCount; ++i) {
+    A.col(i) << 1.0, feet[i].x(), feet[i].y();
+    ground += feet[i].z() / kLegCount;
+  }
+  const Eigen::Matrix3d AAt = A * A.transpose();
+  const Eigen::Matrix3d AAt_inv = AAt.inverse();
+  const int n = std::max(path_samples, 1);
+  for (int i = 0; i <= n; ++i) {
+    const double t = thrust.duration() * i / n;
+    const Eigen::Vector3d c = thrust.position(t), a = thrust.acceleration(t);
+    const double vertical = a.z() - gravity.z();  // per unit mass
+    if (!(vertical > 0.0)) {
+      std::ostringstream msg;
+      msg << "the feet would have to pull the CoM down at t = " << t << " s of the thrust (vertical acceleration "
+          << a.z() << " m/s^2)";
+      return msg.str();
+    }
+    const Eigen::Vector2d zmp = c.head<2>() - (c.z() - ground) * a.head<2>() / vertical;
+    const Eigen::Vector3d b(1.0, zmp.x(), zmp.y());
+    const Eigen::Matrix<double, kLegCount, 1> share = A.transpose() * (AAt_inv * b) * kLegCount;  // 1 = the mean
+    Eigen::Index foot = 0;
+    if (share.minCoeff(&foot) < min_share) {
+      std::ostringstream msg;
+      msg << "stance foot " << foot << " would carry " << share(foot)
+          << " of the mean vertical force at t = " << t << " s of the thrust (zero-moment point "
+          << zmp.transpose() << ", CoM " << c.transpose() << ")";
       return msg.str();
     }
   }
@@ -348,6 +402,7 @@ void PlannerConfig::check() const {
   }
   if (!(std::isfinite(min_apex_rise_m) && min_apex_rise_m >= 0.0)) configError("min_apex_rise_m must be >= 0");
   if (!(std::isfinite(in_place_apex_rise_m) && in_place_apex_rise_m > 0.0)) configError("in_place_apex_rise_m must be > 0");
+  if (!std::isfinite(min_support_share)) configError("min_support_share must be finite");
   if (workspace) {
     for (const LegGeometry& leg : workspace->legs) leg.check();
     for (const Eigen::Vector3d& f : workspace->feet) {
@@ -365,8 +420,16 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
   std::optional<PlannedJump> first_failure;
   std::optional<PlannedJump> leg_failure;
+  std::optional<PlannedJump> support_failure;
+  // Candidates in order: the still start at every rise first (when enabled),
+  // then each rise with the fixed offsets.
+  std::vector<std::pair<double, double>> placements;  // (rise, ahead); NaN ahead: the still start
   for (double rise : config.lift_off_rise_m) {
-    for (double ahead : config.lift_off_ahead_m) {
+    if (config.still_start_first) placements.emplace_back(rise, kNaN);
+    for (double ahead : config.lift_off_ahead_m) placements.emplace_back(rise, ahead);
+  }
+  for (const auto& [rise, ahead] : placements) {
+    {
       for (double duration : config.thrust_duration_s) {
         for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
           // Without a yaw change every fraction gives the same plan.
@@ -383,12 +446,26 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
               continue;
             }
           }
+          if (plan.feasible && config.workspace) {
+            const std::optional<std::string> pull =
+                thrustLeavesSupport(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
+                                    config.workspace->feet, config.gravity, config.min_support_share,
+                                    config.workspace->path_samples);
+            if (pull) {
+              plan.feasible = false;
+              plan.limit = PlanLimit::kSupport;
+              plan.reason = "every candidate in the leg workspace needs a foot to pull; the first: " + *pull;
+              if (!support_failure) support_failure = plan;
+              continue;
+            }
+          }
           if (plan.feasible) return plan;
           if (!first_failure) first_failure = plan;
         }
       }
     }
   }
+  if (support_failure) return *support_failure;
   return leg_failure ? *leg_failure : *first_failure;
 }
 

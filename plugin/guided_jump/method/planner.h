@@ -76,6 +76,22 @@ std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, doubl
                                                  const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                  const LegWorkspace& workspace);
 
+// Where a thrust would need a stance foot to pull: samples the thrust path of
+// `action` and, at each sample, shares the vertical force m (a_z + g) of the
+// planned CoM acceleration over the stance feet `feet` (in S, on one level) by
+// the minimum-norm solution that puts the centre of pressure at the zero-moment
+// point c_xy - c_z' a_xy / (a_z + g) (c_z' the CoM height above the feet). The
+// controller distributes its feed-forward the same way. Returns a sentence saying
+// when a foot's share drops below `min_share` of the mean share (the first such
+// sample), std::nullopt when none does. A countermovement's initial
+// acceleration 2 v_b / T_th moves the zero-moment point h a / g away: for a
+// diagonal jump out of the diamond spanned by the feet, so that a foot would have
+// to pull, lifts instead, and the robot tips about the other diagonal.
+std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double azimuth,
+                                               const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
+                                               const std::array<Eigen::Vector3d, kLegCount>& feet,
+                                               const Eigen::Vector3d& gravity, double min_share, int path_samples);
+
 struct PlannerConfig {
   ActionRanges ranges = go1ActionRanges();
   Eigen::Vector3d gravity = standardGravity();  // must be along -z
@@ -93,6 +109,12 @@ struct PlannerConfig {
   // prototype's 0.08), capped at half the horizontal target distance; raised to
   // d cos(theta_v) so that the Bezier lift-off never lies behind the polar origin.
   std::vector<double> lift_off_ahead_m{0.08, 0.04, 0.0};
+  // Before those offsets, try the still start: the lift-off offset T_th/3 v_b
+  // (+ d cos(theta_v)) that puts the Bezier's P2 above P0, so the CoM starts with
+  // no horizontal acceleration and no countermovement. A countermovement's
+  // initial acceleration 2 v_b / T_th moves the centre of pressure by
+  // h a / g: out of the support polygon for lateral and diagonal jumps.
+  bool still_start_first = true;
   // Thrust durations tried (clamped into the T_th range).
   std::vector<double> thrust_duration_s{0.45, 0.4};
   // Fractions of the target yaw done during the thrust (the rest in flight).
@@ -103,7 +125,10 @@ struct PlannerConfig {
   // Vertical (in-place) jumps: apex this far above max(lift-off, target) CoM height.
   double in_place_apex_rise_m = 0.10;
 
-  std::optional<LegWorkspace> workspace;  // empty: legs not checked
+  std::optional<LegWorkspace> workspace;  // empty: legs and support not checked
+  // With a workspace: the least share of the mean vertical foot force any
+  // stance foot may get on the thrust path (thrustLeavesSupport).
+  double min_support_share = 0.2;
 
   double standingHeight() const;            // standing_com_height or start_com.z
   Eigen::Vector3d polarOrigin() const;      // start_com - standingHeight() e_z
@@ -117,8 +142,9 @@ enum class PlanLimit {
   kActionRange,    // a parameter would leave its range (see limiting_parameter)
   kExplosive,      // the explosive acceleration cap would need d beyond its range
   kLegWorkspace,   // every candidate loses a foot somewhere on the thrust path
+  kSupport,        // every candidate in reach would need a foot to pull
 };
-const char* planLimitName(PlanLimit limit);  // "none", "action_range", "explosive", "leg_workspace"
+const char* planLimitName(PlanLimit limit);  // "none", "action_range", "explosive", "leg_workspace", "support"
 
 struct PlannedJump {
   JumpAction action;  // always within the ranges (clamped when infeasible)
