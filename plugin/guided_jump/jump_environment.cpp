@@ -227,17 +227,14 @@ class JumpEnvironment {
       if (jump::planJump(target, config).feasible) break;
       config.yaw_at_lift_off_fraction = {0.0};
     }
-    // The landing stops the CoM v / wn beyond its touchdown point (jump_phases.h),
-    // where v is the horizontal velocity the impact leaves: friction takes up to
-    // mu |v_z| of it with the vertical impulse. Aim the touchdown that much short
-    // of the target, a few fixed-point rounds.
+    // The landing stops the CoM beyond its touchdown point (landingStop in
+    // jump_phases.h): aim the touchdown that much short of the target, a few
+    // fixed-point rounds.
     jump::PlannedJump plan = jump::planJump(target, config);
     for (int round = 0; round < 4 && plan.feasible; ++round) {
-      const Eigen::Vector2d v = plan.lift_off.velocity.head<2>();
-      const double v_down = std::abs(plan.lift_off.velocity.z() + gravity_.z() * plan.flight_time);
-      const double left = std::max(0.0, v.norm() - JumpController::kLandingFriction * v_down);
-      const Eigen::Vector2d stop =
-          v.norm() > 0.0 ? Eigen::Vector2d(v.normalized() * left / JumpController::kLandingFrequency) : Eigen::Vector2d::Zero();
+      Eigen::Vector3d v_touchdown = plan.lift_off.velocity;
+      v_touchdown.z() += gravity_.z() * plan.flight_time;
+      const Eigen::Vector2d stop = JumpController::landingStop(v_touchdown);
       jump::JumpTarget aimed = target;
       aimed.displacement.head<2>() -= stop;
       const jump::PlannedJump next = jump::planJump(aimed, config);

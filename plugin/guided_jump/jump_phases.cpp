@@ -228,6 +228,14 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, torque);
 }
 
+Eigen::Vector2d JumpController::landingStop(const Eigen::Vector3d& v) {
+  const Eigen::Vector2d horizontal = v.head<2>();
+  const double speed = horizontal.norm();
+  if (!(speed > 0.0)) return Eigen::Vector2d::Zero();
+  const double left = std::max(0.0, speed - kLandingFriction * std::abs(v.z()));
+  return horizontal / speed * left / kLandingFrequency;
+}
+
 void JumpController::landingReference(const pronk_robot_state& s) {
   // A level trunk at the stance height over the feet: the trunk frame at the
   // current yaw, placed over the feet's centroid as it was at the thrust start.
@@ -381,6 +389,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     const double t = s.time - thrust_start_;
     if (!any_contact) {
       for (int j = 0; j < n_; ++j) blend_from_(j) = s.q[j];
+      hip_roll_offset_ = 0;
+      last_air_time_ = s.time;
       char detail[160];
       const Eigen::Vector3d v = heading_.transpose() * vec(s.com_velocity);
       std::snprintf(detail, sizeof detail, "%.3f s into the thrust (plan %.3f s); CoM velocity (%.3f, %.3f, %.3f) m/s (start frame)",
@@ -406,7 +416,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       // The CoM comes to rest v / wn beyond the touchdown point: with that goal the
       // critically damped stop is a pure exponential, with no overshoot and return.
       touchdown_com_ = vec(s.com_position);
-      touchdown_com_->head<2>() += vec(s.com_velocity).head<2>() / kLandingFrequency;
+      touchdown_com_->head<2>() += landingStop(vec(s.com_velocity));
       enter(JumpPhase::kLanding, s.time);
       all_down_seen_ = false;
       compute(s, torque);
@@ -424,12 +434,26 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     } else {
       // The landing pose: the stance feet as they would be under a level trunk, so
       // that a pitched or rolled trunk still lands on all four feet together.
+      // The feet land where the landing will stop the CoM (landingStop), with the
+      // vertical speed the CoM will have when it is back at the standing height.
       const Eigen::Matrix3d R = rotationOf(s);
       const Eigen::Matrix3d level = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, R.transpose() * level * stance_feet_.col(f));
+      const double drop = std::max(0.0, s.com_position[2] - (origin_.z() + standing_height_));
+      Eigen::Vector3d v_touchdown = vec(s.com_velocity);
+      v_touchdown.z() = -std::sqrt(v_touchdown.z() * v_touchdown.z() - 2.0 * gravity_.z() * drop);
+      Eigen::Vector3d ahead = Eigen::Vector3d::Zero();
+      ahead.head<2>() = landingStop(v_touchdown);
+      for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, R.transpose() * (level * stance_feet_.col(f) + ahead));
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);
     qd_ref_.setZero();
+    const double roll_rate = (rotationOf(s).transpose() * vec(s.base_angular_velocity)).x();
+    hip_roll_offset_ += (s.time - last_air_time_) * kHipRollGain * roll_rate;
+    last_air_time_ = s.time;
+    for (int j = 0; j < n_; j += 3) {  // joints are (hip, thigh, calf) per leg
+      q_ref_(j) += hip_roll_offset_;
+      qd_ref_(j) = kHipRollGain * roll_rate;
+    }
     jointTorques(s, kp_flight, q_ref_, qd_ref_, false, Eigen::Vector3d::Zero(), torque);
   }
 }

@@ -94,8 +94,23 @@ class JumpController {
   static constexpr double kLandingFrequency = 5.0;
   static constexpr double kLandingFriction = 0.6;
   static constexpr double kGroundReach = 0.01;  // m below the feet that are down, for a foot in the air
+  // In the air every hip turns at this multiple of the trunk's roll rate (trunk
+  // frame): the legs then take over the roll momentum and the trunk stops rolling.
+  // Angular momentum: I_t w = I_t w' + I_l (w' + qd) with w' = 0 gives
+  // qd = w I_t / I_l; the legs' share of the roll inertia about the trunk's axis
+  // makes it about 1 for the Go1 and Aliengo, and the low flight gains need more.
+  // Measured on the Go1's 0.3 m lateral jump: the trunk's roll at touchdown drops
+  // from -28 to -15 deg.
+  static constexpr double kHipRollGain = 1.5;
   static constexpr double kLandingTilt = 4.0;
   static constexpr double kLandingTiltDamping = 0.4;
+
+  // Where the landing brings the CoM to rest, from the touchdown point: the
+  // horizontal velocity the impact leaves (friction takes up to kLandingFriction
+  // |v_z| of it with the vertical impulse), over kLandingFrequency. The airborne
+  // feet land that far ahead of the CoM, the landing wrench stops the CoM there,
+  // and the ballistic prior aims short by it.
+  static Eigen::Vector2d landingStop(const Eigen::Vector3d& touchdown_velocity);
 
   // Throws InvalidArgument for an action of the wrong size or one the method rejects.
   JumpController(const pronk_host_api* host, const JumpSettings& settings);
@@ -151,6 +166,8 @@ class JumpController {
   bool all_down_seen_ = false;  // landing: every foot has touched down
   std::optional<Eigen::Vector3d> touchdown_com_;  // CoM at touchdown after a flight
   double standing_height_ = 0;  // CoM above the ground at the thrust start
+  double hip_roll_offset_ = 0;  // rad added to every hip in the air (absorbs the trunk's roll momentum)
+  double last_air_time_ = 0;    // s, the previous airborne tick
   std::unique_ptr<jump::ThrustPlan> plan_;
   std::unique_ptr<jump::OrientationTrajectory> orientation_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // S origin, world
