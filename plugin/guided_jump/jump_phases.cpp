@@ -11,6 +11,7 @@
 #include "abi_boundary.h"
 #include "force_distribution.h"
 #include "method/action_mapping.h"
+#include "method/ballistics.h"
 
 namespace pronk::guided_jump {
 
@@ -229,11 +230,7 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
 }
 
 Eigen::Vector2d JumpController::landingStop(const Eigen::Vector3d& v) {
-  const Eigen::Vector2d horizontal = v.head<2>();
-  const double speed = horizontal.norm();
-  if (!(speed > 0.0)) return Eigen::Vector2d::Zero();
-  const double left = std::max(0.0, speed - kLandingFriction * std::abs(v.z()));
-  return horizontal / speed * left / kLandingFrequency;
+  return jump::landingStopOffset(v, kLandingFriction, kLandingFrequency);
 }
 
 void JumpController::landingReference(const pronk_robot_state& s) {

@@ -105,11 +105,10 @@ class JumpController {
   static constexpr double kLandingTilt = 4.0;
   static constexpr double kLandingTiltDamping = 0.4;
 
-  // Where the landing brings the CoM to rest, from the touchdown point: the
-  // horizontal velocity the impact leaves (friction takes up to kLandingFriction
-  // |v_z| of it with the vertical impulse), over kLandingFrequency. The airborne
-  // feet land that far ahead of the CoM, the landing wrench stops the CoM there,
-  // and the ballistic prior aims short by it.
+  // Where the landing brings the CoM to rest, from the touchdown point
+  // (jump::landingStopOffset with kLandingFriction and kLandingFrequency). The
+  // airborne feet land that far ahead of the CoM, the landing wrench stops the
+  // CoM there, and the ballistic prior aims short by it.
   static Eigen::Vector2d landingStop(const Eigen::Vector3d& touchdown_velocity);
 
   // Throws InvalidArgument for an action of the wrong size or one the method rejects.

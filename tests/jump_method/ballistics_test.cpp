@@ -326,5 +326,21 @@ TEST(SafetyCheck, RejectsNonFiniteStates) {
   EXPECT_FALSE(verdict.reason.empty());
 }
 
+TEST(LandingStop, FrictionTakesMuTimesTheVerticalSpeedAndTheRestStopsOverOneOverOmega) {
+  // 1.2 m/s ahead, 1 m/s down: friction 0.6 takes 0.6 m/s, 0.6 m/s left stops
+  // 0.6 / 5 = 0.12 m further, along the horizontal velocity.
+  const Eigen::Vector2d stop = landingStopOffset({1.2 * 0.6, 1.2 * 0.8, -1.0}, 0.6, 5.0);
+  EXPECT_NEAR(stop.norm(), 0.12, 1e-12);
+  EXPECT_NEAR(stop.x() / stop.y(), 0.6 / 0.8, 1e-12);
+  // The sign of v_z does not matter; friction that takes it all leaves nothing.
+  EXPECT_NEAR((landingStopOffset({1.2, 0.0, 1.0}, 0.6, 5.0) - Eigen::Vector2d(0.12, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(landingStopOffset({0.5, 0.0, -1.0}, 0.6, 5.0), Eigen::Vector2d::Zero());
+  EXPECT_EQ(landingStopOffset({0.0, 0.0, -1.0}, 0.6, 5.0), Eigen::Vector2d::Zero());
+  // Without friction the whole speed is stopped by the damped return: v / omega.
+  EXPECT_NEAR((landingStopOffset({-1.0, 0.0, -1.0}, 0.0, 5.0) - Eigen::Vector2d(-0.2, 0.0)).norm(), 0.0, 1e-12);
+  EXPECT_THROW(landingStopOffset({1.0, 0.0, -1.0}, -0.1, 5.0), std::invalid_argument);
+  EXPECT_THROW(landingStopOffset({1.0, 0.0, -1.0}, 0.6, 0.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pronk::jump

@@ -275,4 +275,15 @@ SafetyVerdict SafetyCheck::operator()(const FlightState& lift_off, const Eigen::
   return {};
 }
 
+Eigen::Vector2d landingStopOffset(const Eigen::Vector3d& v, double friction, double frequency) {
+  if (!(friction >= 0.0) || !(frequency > 0.0)) {
+    throw std::invalid_argument("landingStopOffset: friction must be >= 0 and frequency > 0");
+  }
+  const Eigen::Vector2d horizontal = v.head<2>();
+  const double speed = horizontal.norm();
+  if (!(speed > 0.0)) return Eigen::Vector2d::Zero();
+  const double left = std::max(0.0, speed - friction * std::abs(v.z()));
+  return horizontal / speed * left / frequency;
+}
+
 }  // namespace pronk::jump

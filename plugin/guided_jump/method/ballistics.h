@@ -189,4 +189,12 @@ struct SafetyCheck {
   SafetyVerdict operator()(const FlightState& lift_off, const Eigen::Vector3d& target) const;
 };
 
+// The landing's stopping offset: where a compliant landing brings the CoM to rest,
+// horizontally, from its touchdown point. The impact's vertical impulse m |v_z|
+// lets friction take up to `friction` |v_z| of the horizontal speed at once; a
+// critically damped stop at natural frequency `frequency` (rad/s) carries what is
+// left a distance of (speed left) / frequency further, along the horizontal
+// velocity. Zero when friction takes it all. friction >= 0, frequency > 0.
+Eigen::Vector2d landingStopOffset(const Eigen::Vector3d& touchdown_velocity, double friction, double frequency);
+
 }  // namespace pronk::jump
