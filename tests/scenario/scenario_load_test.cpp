@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "pronk/error.h"
 #include "pronk/scenario.h"
 
 namespace fs = std::filesystem;
@@ -403,6 +404,59 @@ TEST(Sweeps, GridSpanIncludesTheEndPointDespiteRounding) {
   ASSERT_EQ(x.size(), 7u);
   EXPECT_NEAR(x.back(), 0.9, 1e-12);
   EXPECT_EQ(s.sweeps[0].axes[1].values, (std::vector<double>{50, 60, 70}));  // 75 is not on the grid
+}
+
+TEST(StepPlatforms, UpAndDownTargetsGetTheirPlatformWithTheEdgeHalfway) {
+  TempTree tree;
+  const fs::path file = tree.write(
+      "steps.xml", scenarioWith(tinyPlatform() + "<terrain step_platforms=\"true\"/>\n<targets>"
+                                                 "<target name=\"up\" x=\"0.3\" y=\"0.4\" z=\"0.2\"/>"
+                                                 "<target name=\"down\" x=\"-0.6\" z=\"-0.1\"/>"
+                                                 "<target name=\"flat\" x=\"0.4\"/></targets>\n"));
+  const Scenario s = loadScenario(file.string());
+  ASSERT_TRUE(s.step_platforms);
+  const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
+  ASSERT_EQ(cases.size(), 3u);
+  // Up, 0.5 m away along (0.6, 0.8): the box is 0.2 high, turned to the jump
+  // direction, from the edge at 0.25 m to 0.6 m beyond the target.
+  const Scenario up = pronk::applyCase(s, cases[0]);
+  ASSERT_EQ(up.terrain.size(), s.terrain.size() + 1);
+  const pronk::TerrainBox& landing = up.terrain.back();
+  EXPECT_NEAR(landing.size[2], 0.2, 1e-12);
+  EXPECT_NEAR(landing.position[2], s.ground_height + 0.1, 1e-12);
+  EXPECT_NEAR(landing.yaw, std::atan2(0.8, 0.6), 1e-12);
+  EXPECT_NEAR(landing.size[0], 0.5 + 0.6 - 0.25, 1e-12);
+  const double middle = (0.25 + 1.1) / 2.0;
+  EXPECT_NEAR(landing.position[0], s.platform.base_position[0] + 0.6 * middle, 1e-12);
+  EXPECT_NEAR(landing.position[1], s.platform.base_position[1] + 0.8 * middle, 1e-12);
+  // Down, 0.6 m backwards: a start platform from 0.8 m against the jump direction
+  // to the edge 0.3 m along it.
+  const Scenario down = pronk::applyCase(s, cases[1]);
+  const pronk::TerrainBox& start = down.terrain.back();
+  EXPECT_EQ(start.name, "start_platform");
+  EXPECT_NEAR(start.size[2], 0.1, 1e-12);
+  EXPECT_NEAR(start.size[0], 0.8 + 0.3, 1e-12);
+  // Along the jump direction u = -x it spans [-0.8, 0.3] m: its centre is -0.25 u = +0.25 m in x.
+  EXPECT_NEAR(start.position[0], s.platform.base_position[0] + 0.25, 1e-12);
+  // A flat target adds nothing.
+  EXPECT_EQ(pronk::applyCase(s, cases[2]).terrain.size(), s.terrain.size());
+}
+
+TEST(StepPlatforms, ATargetStraightAboveTheStartHasNoRoomForAnEdge) {
+  TempTree tree;
+  const fs::path file = tree.write(
+      "steps.xml", scenarioWith(tinyPlatform() + "<terrain step_platforms=\"true\"/>\n<targets>"
+                                                 "<target name=\"hop\" x=\"0.02\" z=\"0.2\"/></targets>\n"));
+  const Scenario s = loadScenario(file.string());
+  const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
+  try {
+    pronk::applyCase(s, cases[0]);
+    FAIL() << "expected an InputError";
+  } catch (const pronk::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(file.string() + ":", 0), 0u) << message;
+    EXPECT_NE(message.find("step_platforms"), std::string::npos) << message;
+  }
 }
 
 TEST(Numbers, ParseStrictly) {

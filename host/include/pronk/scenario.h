@@ -171,6 +171,10 @@ struct Scenario {
   std::vector<TerrainBox> terrain;
   double ground_height = 0;      // m, the ground plane z
   bool ground = true;            // false: no ground plane (only boxes)
+  // <terrain step_platforms="true">: every case whose target has z != 0 gets a
+  // platform of height |z| (applyCase): a landing platform for up targets, a
+  // start platform for down targets.
+  bool step_platforms = false;
   std::optional<EnvironmentSpec> environment;  // with it, <controller> is optional
   std::vector<TargetSpec> targets;
   std::vector<SweepSpec> sweeps;
@@ -220,7 +224,13 @@ std::vector<EpisodeCase> targetCases(const Scenario& scenario);
 // sweep that sets no target variable runs every target of the scenario per case.
 // Throws InputError naming the known sweeps for an unknown name.
 std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string& name);
-// The scenario with a case's non-target assignments applied.
+// The scenario with a case's non-target assignments applied and, with
+// step_platforms, the case's platform added: a box |z| high, turned to the jump
+// direction, whose edge lies halfway between the start and the target (so the
+// feet of both stances are equally far from it), 1.2 m wide. An up target's
+// platform runs from the edge to 0.6 m beyond the target; a down target's start
+// platform from 0.8 m behind the start to the edge, and the robot starts on it.
+// A target straight above or below the start has no edge to put: InputError.
 Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode);
 
 // The only major version of the format this build reads.

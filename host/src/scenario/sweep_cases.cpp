@@ -1,5 +1,6 @@
 // Sweeps and target lists expanded into episode cases (docs/scenario-format.md,
 // <sweeps>).
+#include <cmath>
 #include <cstdint>
 
 #include "pronk/error.h"
@@ -118,8 +119,48 @@ std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string&
   return out;
 }
 
+namespace {
+
+constexpr double kPlatformWidth = 1.2;     // m across the jump direction
+constexpr double kPlatformBeyond = 0.6;    // m past an up target
+constexpr double kPlatformBehind = 0.8;    // m behind a down target's start
+constexpr double kLeastEdgeDistance = 0.05;  // m: a target closer than twice this has no edge
+
+// The case's up or down platform (Scenario::step_platforms).
+void addStepPlatform(Scenario& s, const EpisodeCase& episode) {
+  const TargetSpec& t = episode.target;
+  if (std::abs(t.z) < 1e-9) return;
+  const double distance = std::hypot(t.x, t.y);
+  if (distance < 2.0 * kLeastEdgeDistance) {
+    const SourceLocation where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
+    throw InputError(where, episode.label + ": target z = " + std::to_string(t.z) +
+                                " m needs a platform edge between the start and the target, but the target is " +
+                                std::to_string(distance) + " m from the start (terrain step_platforms)");
+  }
+  const PlatformSpec& p = s.platform;
+  const double azimuth = p.base_yaw + std::atan2(t.y, t.x);
+  const double edge = distance / 2.0;
+  const double height = std::abs(t.z);
+  // Along the jump direction, from the start: where the box begins and ends.
+  const double from = t.z > 0 ? edge : -kPlatformBehind;
+  const double to = t.z > 0 ? distance + kPlatformBeyond : edge;
+  const double middle = (from + to) / 2.0;
+  TerrainBox box;
+  box.name = t.z > 0 ? "landing_platform" : "start_platform";
+  box.size = {to - from, kPlatformWidth, height};
+  box.position = {p.base_position[0] + middle * std::cos(azimuth), p.base_position[1] + middle * std::sin(azimuth),
+                  s.ground_height + height / 2.0};
+  box.yaw = azimuth;
+  box.where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
+  s.terrain.push_back(box);
+  if (t.z < 0 && !p.on_ground) s.platform.base_position[2] += height;
+}
+
+}  // namespace
+
 Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode) {
   Scenario s = scenario;
+  if (s.step_platforms) addStepPlatform(s, episode);
   for (const auto& [variable, value] : episode.assignments) {
     if (variable == "platform.trunk_mass_offset") s.platform.trunk_mass_offset = value;
     else if (variable == "joints.damping") s.platform.joints.damping = value;

@@ -24,6 +24,7 @@ void readTerrain(const XMLElement& e, const SourceFile& file, Scenario& scenario
   ElementReader r(e, file);
   scenario.ground = r.boolean("ground", scenario.ground);
   scenario.ground_height = r.number("ground_height", scenario.ground_height);
+  scenario.step_platforms = r.boolean("step_platforms", scenario.step_platforms);
   r.rejectUnknownAttributes();
   std::map<std::string, int> names;
   for (const XMLElement* k : r.children({"box"})) {
