@@ -376,8 +376,13 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     std::printf("ended standing: %d of %zu; time to rest (CoM < 0.05 m/s): median %.2f s\n", standing, landed,
                 median(rest_times));
   }
-  std::printf("simulated %.1f s in %.1f s wall (%.1fx real time, %.2f jumps/s)\n", simulated, wall,
-              simulated / std::max(wall, 1e-9), cases.size() / std::max(wall, 1e-9));
+  const int ran = static_cast<int>(cases.size()) - rejected;  // a rejected jump simulates nothing
+  if (ran > 0 && wall > 0) {
+    std::printf("simulated %.1f s in %.1f s wall (%.1fx real time, %.2f jumps/s)\n", simulated, wall,
+                simulated / wall, ran / wall);
+  } else {
+    std::printf("simulated nothing\n");
+  }
 
   if (!options.out_dir.empty()) {
     const std::string json_path = (fs::path(options.out_dir) / "results.json").string();

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "abi_boundary.h"
-#include "force_distribution.h"
+#include "method/force_distribution.h"
 
 namespace pronk::guided_jump {
 
@@ -117,7 +117,7 @@ void HoldController::compute(const pronk_robot_state& s, double* torque) {
       points.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::Vector3d>(s.foot_position + 3 * contact[i]);
     }
     const Eigen::Vector3d com(s.com_position[0], s.com_position[1], s.com_position[2]);
-    const Eigen::Matrix3Xd forces = distributeWeight(points, com, mass_, gravity_);
+    const Eigen::Matrix3Xd forces = jump::distributeWeight(points, com, mass_, gravity_);
     for (size_t i = 0; i < contact.size(); ++i) {
       if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
         throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));

@@ -1,7 +1,7 @@
 // Holding the stance: joint PD towards the stance plus gravity compensation.
 //   tau = kp (q_stance - q) - kd qd  -  sum over feet in contact of J_i^T f_i
 // where f = G^+ (-m g, 0) are the ground forces that carry the weight with no
-// moment about the CoM (force_distribution.h) and J_i is the joint part (columns
+// moment about the CoM (method/force_distribution.h) and J_i is the joint part (columns
 // 6..) of foot i's world Jacobian: a leg pushes the ground with -f_i, which takes
 // tau = -J_i^T f_i. Each torque is then clamped to the joint's effort limit.
 // This is the controller the jump's thrust, flight and landing phases build on.

@@ -167,6 +167,15 @@ class JumpEnvironment {
     double g[3] = {0, 0, 0};
     host->gravity(host->host, g);
     gravity_ = vec(g);
+    mass_ = host->total_mass(host->host);
+    // Joints come as (hip, thigh, calf) per leg: the weakest leg's limit per kind,
+    // as the controller saturates them (an effort limit the model lacks: none).
+    effort_limits_.fill(std::numeric_limits<double>::infinity());
+    for (int j = 0; j < n_; ++j) {
+      double effort = 0;
+      host->joint_limits(host->host, j, nullptr, nullptr, nullptr, &effort);
+      if (effort > 0 && std::isfinite(effort)) effort_limits_[j % 3] = std::min(effort_limits_[j % 3], effort);
+    }
     limits_.position_min.resize(n_);
     limits_.position_max.resize(n_);
     limits_.velocity_max.resize(n_);
@@ -301,6 +310,10 @@ class JumpEnvironment {
               jump::thrustLeavesWorkspace(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws)) {
         throw Rejected("leg_workspace: " + *out);
       }
+      if (std::optional<std::string> over =
+              jump::thrustExceedsTorque(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws, gravity_)) {
+        throw Rejected("torque_limit: " + *over);
+      }
     }
 
     JumpSettings js = settings_.jump;
@@ -395,6 +408,8 @@ class JumpEnvironment {
     ws.legs = *legs_;
     ws.feet = start_feet_;
     ws.com_to_trunk = com_to_trunk_;
+    ws.mass = mass_;
+    ws.effort_limits = effort_limits_;
     return ws;
   }
 
@@ -446,6 +461,8 @@ class JumpEnvironment {
   StartFrame start_;
   double standing_height_ = 0;
   Eigen::Vector3d com_to_trunk_ = Eigen::Vector3d::Zero();
+  double mass_ = 0;                            // kg, the whole robot
+  std::array<double, 3> effort_limits_{};     // N m: hip, thigh, calf
   std::array<Eigen::Vector3d, jump::kLegCount> start_feet_{};
 
   std::optional<jump::JumpAction> action_;  // the mapped action of this episode

@@ -9,7 +9,7 @@
 #include <Eigen/LU>
 
 #include "abi_boundary.h"
-#include "force_distribution.h"
+#include "method/force_distribution.h"
 #include "method/action_mapping.h"
 #include "method/ballistics.h"
 
@@ -277,7 +277,7 @@ void JumpController::applyBodyWrench(const pronk_robot_state& s, const Eigen::Ve
   if (contact.empty()) return;
   Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
   for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
-  const Eigen::Matrix3Xd forces = distributeWrench(points, vec(s.com_position), force, moment);
+  const Eigen::Matrix3Xd forces = jump::distributeWrench(points, vec(s.com_position), force, moment);
   for (size_t i = 0; i < contact.size(); ++i) {
     if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
       throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));

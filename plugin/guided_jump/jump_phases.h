@@ -141,7 +141,7 @@ class JumpController {
   // down, levels the trunk and carries the weight, spread over the feet in contact.
   void landingTorques(const pronk_robot_state& s, double kp, double* torque);
   // tau -= sum over the feet in contact of J_i^T f_i, f = the minimum-norm forces
-  // that put (force, moment about the CoM) on the body (force_distribution.h).
+  // that put (force, moment about the CoM) on the body (method/force_distribution.h).
   void applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force, const Eigen::Vector3d& moment,
                        Eigen::Ref<Eigen::VectorXd> tau);
   // Keeps tau as commandedTorque(), then clamps it to the effort limits (throws if not finite).

@@ -77,6 +77,22 @@ TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
   EXPECT_NEAR(jump["events"]["lift_off"].get<double>(), jump["events"]["planned_lift_off_time"].get<double>(), 0.02);
 }
 
+TEST(JumpRuns, JumpBeyondTheMotorsIsRejectedWithThePredictedTorque) {
+  // A Go1 with a quarter of its effort limits: the safety filter's torque
+  // prediction rejects the forward jump, naming the joint, before it runs.
+  const std::string dir = outDir("jump_weak_motors");
+  const CommandRun r = pronk("run " + testScenario("go1_weak_motors.xml") + " --policy ballistic --out " + dir);
+  EXPECT_EQ(r.status, 4) << r.output;
+  const nlohmann::json j = results(dir);
+  ASSERT_EQ(j.size(), 1u) << r.output;
+  EXPECT_EQ(j[0]["status"], "rejected");
+  const std::string reason = j[0]["failure_reason"].get<std::string>();
+  EXPECT_EQ(reason.rfind("torque_limit: ", 0), 0u) << reason;
+  EXPECT_NE(reason.find(" would need "), std::string::npos) << reason;
+  EXPECT_EQ(j[0]["simulated_s"].get<double>(), 0.0);
+  EXPECT_NE(r.output.find("simulated nothing"), std::string::npos) << r.output;
+}
+
 TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRuns) {
   const std::string dir = outDir("jump_impossible_up");
   const CommandRun r = pronk("run " + testScenario("go1_impossible_up.xml") + " --policy ballistic --out " + dir);

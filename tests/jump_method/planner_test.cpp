@@ -154,6 +154,33 @@ TEST(Planner, SupportCheckFlagsACountermovementThatNeedsAPullingFoot) {
                                    cfg.workspace->feet, cfg.gravity, cfg.min_support_share, 60));
 }
 
+TEST(Planner, TorquePredictionFlagsWeakMotorsAndNamesTheJoint) {
+  PlannerConfig cfg = go1Config(true);
+  const PlannedJump plan = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
+  ASSERT_TRUE(plan.feasible) << plan.reason;
+  LegWorkspace ws = *cfg.workspace;
+  // No mass: nothing to predict.
+  EXPECT_FALSE(thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity));
+  // The Go1 (12.7 kg; 23.7, 23.7, 35.55 N m): the paper's forward jump fits.
+  ws.mass = 12.7;
+  ws.effort_limits = {23.7, 23.7, 35.55};
+  EXPECT_FALSE(thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity));
+  // A quarter of each limit does not: the standing weight alone needs about
+  // 31 N per foot through a 0.2 m lever arm, and the jump more.
+  ws.effort_limits = {23.7 / 4, 23.7 / 4, 35.55 / 4};
+  const std::optional<std::string> over =
+      thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity);
+  ASSERT_TRUE(over.has_value());
+  EXPECT_NE(over->find(" would need "), std::string::npos) << *over;
+  EXPECT_NE(over->find("(limit "), std::string::npos) << *over;
+  // The planner with such motors finds nothing and says why.
+  cfg.workspace = ws;
+  const PlannedJump weak = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
+  EXPECT_FALSE(weak.feasible);
+  EXPECT_EQ(weak.limit, PlanLimit::kTorque);
+  EXPECT_NE(weak.reason.find("torque"), std::string::npos) << weak.reason;
+}
+
 TEST(Planner, SupportSharesAreEqualForAStillCentredCoM) {
   const PlannerConfig cfg = go1Config(true);
   // An in-place jump straight up: the zero-moment point stays at the CoM,

@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <stdexcept>
 
+#include "method/force_distribution.h"
 #include "method/orientation_trajectory.h"
 
 namespace pronk::jump {
@@ -290,6 +291,7 @@ const char* planLimitName(PlanLimit limit) {
     case PlanLimit::kExplosive: return "explosive";
     case PlanLimit::kLegWorkspace: return "leg_workspace";
     case PlanLimit::kSupport: return "support";
+    case PlanLimit::kTorque: return "torque";
   }
   return "unknown";
 }
@@ -355,6 +357,41 @@ std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double 
   return std::nullopt;
 }
 
+std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
+                                               const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
+                                               const LegWorkspace& ws, const Eigen::Vector3d& gravity) {
+  if (!(ws.mass > 0.0)) return std::nullopt;
+  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
+  const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
+  Eigen::Matrix3Xd feet(3, kLegCount);
+  for (int i = 0; i < kLegCount; ++i) feet.col(i) = ws.feet[i];
+  static const char* const kJointNames[3] = {"hip", "thigh", "calf"};
+  const int n = std::max(ws.path_samples, 1);
+  for (int k = 0; k <= n; ++k) {
+    const double t = thrust.duration() * k / n;
+    const Eigen::Vector3d c = thrust.position(t);
+    const Eigen::Matrix3d R = orient.rotation(t);
+    const Eigen::Vector3d trunk = c + R * ws.com_to_trunk;
+    const Eigen::Matrix3Xd forces =
+        distributeWrench(feet, c, ws.mass * (thrust.acceleration(t) - gravity), Eigen::Vector3d::Zero());
+    for (int i = 0; i < kLegCount; ++i) {
+      const LegIkResult ik = solveLegIk(ws.legs[i], R.transpose() * (ws.feet[i] - trunk));
+      if (!ik.ok()) continue;  // out of reach: the workspace check's finding, not this one's
+      const Eigen::Vector3d tau = -footJacobian(ws.legs[i], ik.q).transpose() * (R.transpose() * forces.col(i));
+      for (int j = 0; j < 3; ++j) {
+        if (std::abs(tau(j)) > ws.effort_limits[j]) {
+          std::ostringstream msg;
+          msg << legName(static_cast<Leg>(i)) << " " << kJointNames[j] << " would need " << std::abs(tau(j))
+              << " N m (limit " << ws.effort_limits[j] << ") at t = " << t << " s of the " << thrust.duration()
+              << " s thrust (CoM acceleration " << thrust.acceleration(t).transpose() << " m/s^2)";
+          return msg.str();
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
                                const Eigen::Vector3d& start_com, const Eigen::Vector3d& com_to_trunk) {
   LegWorkspace ws;
@@ -409,6 +446,10 @@ void PlannerConfig::check() const {
       if (!f.allFinite()) configError("workspace feet must be finite");
     }
     if (!workspace->com_to_trunk.allFinite()) configError("workspace com_to_trunk must be finite");
+    if (!(std::isfinite(workspace->mass) && workspace->mass >= 0.0)) configError("workspace mass must be finite and >= 0");
+    for (double e : workspace->effort_limits) {
+      if (!(e > 0.0)) configError("workspace effort limits must be > 0 (infinity: unlimited)");
+    }
   }
 }
 
@@ -421,6 +462,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   std::optional<PlannedJump> first_failure;
   std::optional<PlannedJump> leg_failure;
   std::optional<PlannedJump> support_failure;
+  std::optional<PlannedJump> torque_failure;
   // Candidates in order: the still start at every rise first (when enabled),
   // then each rise with the fixed offsets.
   std::vector<std::pair<double, double>> placements;  // (rise, ahead); NaN ahead: the still start
@@ -459,12 +501,25 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
               continue;
             }
           }
+          if (plan.feasible && config.workspace) {
+            const std::optional<std::string> torque = thrustExceedsTorque(
+                plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(), *config.workspace, config.gravity);
+            if (torque) {
+              plan.feasible = false;
+              plan.limit = PlanLimit::kTorque;
+              plan.reason = "every candidate in reach and support needs more torque than the motors have; the first: " +
+                            *torque;
+              if (!torque_failure) torque_failure = plan;
+              continue;
+            }
+          }
           if (plan.feasible) return plan;
           if (!first_failure) first_failure = plan;
         }
       }
     }
   }
+  if (torque_failure) return *torque_failure;
   if (support_failure) return *support_failure;
   return leg_failure ? *leg_failure : *first_failure;
 }

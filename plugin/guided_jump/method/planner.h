@@ -59,6 +59,12 @@ struct LegWorkspace {
   Eigen::Vector3d com_to_trunk = Eigen::Vector3d::Zero();  // trunk centre - CoM, trunk frame, assumed constant
   int path_samples = 60;  // samples of the thrust path (plus both ends) checked
   bool require_within_limits = true;
+  // For the torque prediction (thrustExceedsTorque): the whole robot's mass (0:
+  // torques not checked) and the effort limits of each leg's hip, thigh and calf.
+  double mass = 0.0;
+  std::array<double, 3> effort_limits{std::numeric_limits<double>::infinity(),
+                                      std::numeric_limits<double>::infinity(),
+                                      std::numeric_limits<double>::infinity()};
 };
 
 // The workspace of a robot standing at rest with every leg at joint angles
@@ -91,6 +97,18 @@ std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double 
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const std::array<Eigen::Vector3d, kLegCount>& feet,
                                                const Eigen::Vector3d& gravity, double min_share, int path_samples);
+
+// Where a thrust would need more joint torque than the motors have: at each
+// sample of the thrust path the force m (a - g) of the planned CoM acceleration
+// is shared over the stance feet by the minimum-norm distribution with no moment
+// about the CoM (the controller's feed-forward, force_distribution.h), and each
+// leg's torques -J(q)^T f follow from the leg's IK at that trunk pose. Returns a
+// sentence naming the first joint whose predicted torque exceeds its effort limit
+// (when and by how much), std::nullopt when none does or workspace.mass is 0.
+// The legs' own inertia is not in the prediction.
+std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
+                                               const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
+                                               const LegWorkspace& workspace, const Eigen::Vector3d& gravity);
 
 struct PlannerConfig {
   ActionRanges ranges = go1ActionRanges();
@@ -143,8 +161,10 @@ enum class PlanLimit {
   kExplosive,      // the explosive acceleration cap would need d beyond its range
   kLegWorkspace,   // every candidate loses a foot somewhere on the thrust path
   kSupport,        // every candidate in reach would need a foot to pull
+  kTorque,         // every candidate in reach and support needs more torque than the motors have
 };
-const char* planLimitName(PlanLimit limit);  // "none", "action_range", "explosive", "leg_workspace", "support"
+// "none", "action_range", "explosive", "leg_workspace", "support", "torque"
+const char* planLimitName(PlanLimit limit);
 
 struct PlannedJump {
   JumpAction action;  // always within the ranges (clamped when infeasible)

@@ -1,8 +1,8 @@
-#include "force_distribution.h"
+#include "method/force_distribution.h"
 
 #include <Eigen/QR>
 
-namespace pronk::guided_jump {
+namespace pronk::jump {
 namespace {
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& r) {
@@ -37,4 +37,4 @@ Eigen::Matrix3Xd distributeWeight(const Eigen::Matrix3Xd& contact_points_world, 
   return distributeWrench(contact_points_world, com_world, -mass * gravity_world, Eigen::Vector3d::Zero());
 }
 
-}  // namespace pronk::guided_jump
+}  // namespace pronk::jump

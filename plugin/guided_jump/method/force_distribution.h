@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-namespace pronk::guided_jump {
+namespace pronk::jump {
 
 // contact_points_world: 3 x k foot positions; returns 3 x k forces (ground on foot).
 // When G has no full row rank (fewer than three feet, or feet in a line) this is the
@@ -23,4 +23,4 @@ Eigen::Matrix3Xd distributeWrench(const Eigen::Matrix3Xd& contact_points_world, 
 Eigen::Matrix3Xd distributeWeight(const Eigen::Matrix3Xd& contact_points_world, const Eigen::Vector3d& com_world,
                                   double mass, const Eigen::Vector3d& gravity_world);
 
-}  // namespace pronk::guided_jump
+}  // namespace pronk::jump
