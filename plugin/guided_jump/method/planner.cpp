@@ -174,6 +174,8 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
   double theta = in_place ? kPi / 2.0 : kPi / 4.0;
   double guess_speed = 0.0;
   double d = d_range.min;
+  // Plain iteration first (the map is a strong contraction for most targets:
+  // a few rounds), damped by half after 20 rounds for the ones that oscillate.
   for (int iter = 0; iter < 200; ++iter) {
     const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, cfg);
     if (!m.ok) break;
@@ -182,9 +184,10 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
     const double d_new = std::min(splitSpeed(speed_new).d, d_range.max);
     const bool done = std::abs(theta_new - theta) < 1e-13 && std::abs(d_new - d) < 1e-13 &&
                       std::abs(speed_new - guess_speed) < 1e-13;
-    theta = 0.5 * (theta + theta_new);
-    guess_speed = 0.5 * (guess_speed + speed_new);
-    d = 0.5 * (d + d_new);
+    const double keep = iter < 20 ? 0.0 : 0.5;
+    theta = keep * theta + (1.0 - keep) * theta_new;
+    guess_speed = keep * guess_speed + (1.0 - keep) * speed_new;
+    d = keep * d + (1.0 - keep) * d_new;
     if (done) break;
   }
   const Eigen::Vector3d c_e = liftOffPoint(theta, guess_speed, d);
@@ -302,7 +305,18 @@ std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, doubl
   const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   const int n = std::max(ws.path_samples, 1);
-  for (int i = 0; i <= n; ++i) {
+  // The lift-off end first: the stretched legs there are where most plans fail,
+  // and a search over many candidates then rejects them after one sample.
+  // Then every fourth sample, then the rest: a path that leaves the workspace
+  // for a while is found after a few samples.
+  std::vector<int> order{n};
+  for (int stride : {4, 1}) {
+    for (int i = 0; i < n; i += stride) {
+      if (stride == 1 && i % 4 == 0) continue;
+      order.push_back(i);
+    }
+  }
+  for (int i : order) {
     const double t = thrust.duration() * i / n;
     const Eigen::Matrix3d R = orient.rotation(t);
     const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;

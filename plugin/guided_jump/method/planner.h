@@ -76,7 +76,8 @@ LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, c
 // Where a thrust leaves the leg workspace: samples the thrust path of `action`
 // (ThrustPlan at `azimuth` from com_start about polar_origin, with the action's
 // orientation Bezier from a level start) and returns, for the first sample at
-// which a stance foot of `workspace` is out of reach, a sentence saying when and
+// which a stance foot of `workspace` is out of reach (the lift-off end is
+// checked first, then the path from its start), a sentence saying when and
 // where; std::nullopt when every foot stays reachable.
 std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
                                                  const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
