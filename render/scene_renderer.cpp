@@ -143,21 +143,6 @@ void SceneRenderer::render(const Camera& camera, const SceneMarkers& markers, co
     drawMesh(unit_box_, arrow, Eigen::Vector4d(kTargetColour.x(), kTargetColour.y(), kTargetColour.z(), 1));
     glEnable(GL_LIGHTING);
   }
-  if (markers.planned_arc.size() > 1) {
-    glDisable(GL_LIGHTING);
-    glLineWidth(2);
-    glColor3d(0.95, 0.65, 0.1);
-    glBegin(GL_LINE_STRIP);
-    for (const Eigen::Vector3d& p : markers.planned_arc) glVertex3d(p.x(), p.y(), p.z());
-    glEnd();
-    glEnable(GL_LIGHTING);
-  }
-  if (markers.predicted_landing) {
-    Eigen::Affine3d dot = Eigen::Affine3d::Identity();
-    dot.translation() = *markers.predicted_landing;
-    dot.scale(0.025);
-    drawMesh(unit_sphere_, dot, Eigen::Vector4d(0.95, 0.65, 0.1, 1));
-  }
 
   for (const Drawable& d : drawables_) {
     if (d.body >= int(frame.body_poses.size())) continue;
@@ -175,6 +160,26 @@ void SceneRenderer::render(const Camera& camera, const SceneMarkers& markers, co
     drawMesh(unit_cylinder_, disc, Eigen::Vector4d(0.1, 0.75, 0.25, 1));
     glEnable(GL_LIGHTING);
   }
+  // The planned CoM arc and its predicted landing go on top of everything: the
+  // arc runs through the trunk (it is the CoM's path), and for short jumps the
+  // robot's own body would hide all of it.
+  glDisable(GL_DEPTH_TEST);
+  if (markers.planned_arc.size() > 1) {
+    glDisable(GL_LIGHTING);
+    glLineWidth(3);
+    glColor3d(kArcColour.x(), kArcColour.y(), kArcColour.z());
+    glBegin(GL_LINE_STRIP);
+    for (const Eigen::Vector3d& p : markers.planned_arc) glVertex3d(p.x(), p.y(), p.z());
+    glEnd();
+    glEnable(GL_LIGHTING);
+  }
+  if (markers.predicted_landing) {
+    Eigen::Affine3d dot = Eigen::Affine3d::Identity();
+    dot.translation() = *markers.predicted_landing;
+    dot.scale(0.025);
+    drawMesh(unit_sphere_, dot, Eigen::Vector4d(kArcColour.x(), kArcColour.y(), kArcColour.z(), 1));
+  }
+  glEnable(GL_DEPTH_TEST);
   gl_.readPixels(rgba);
 }
 

@@ -35,6 +35,7 @@ struct SceneMarkers {
 // Colours the tests look for.
 inline const Eigen::Vector3d kTargetColour{0.9, 0.08, 0.08};
 inline const Eigen::Vector3d kSkyColour{0.72, 0.82, 0.93};
+inline const Eigen::Vector3d kArcColour{0.95, 0.65, 0.1};  // planned CoM arc, predicted landing
 
 class SceneRenderer {
  public:

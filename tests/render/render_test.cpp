@@ -78,6 +78,29 @@ TEST(Render, PixelsShowSkyGroundRobotAndTarget) {
   EXPECT_LT((pixel(rgba, w, at) - kSkyColour).norm(), 0.05);
 }
 
+TEST(Render, PlannedArcShowsThroughTheRobot) {
+  // The CoM arc runs through the trunk: it is drawn on top, so its pixels keep
+  // the arc colour even where the trunk covers its projection.
+  Episode e(0.05);
+  const int w = 320, h = 240;
+  SceneRenderer renderer(w, h, e.robot, e.terrain);
+  Camera camera;
+  camera.eye = Eigen::Vector3d(0.3, -1.8, 0.5);
+  camera.target = Eigen::Vector3d(0.3, 0, 0.2);
+  const TraceSample& s = e.trace.samples.back();
+  SceneMarkers markers;
+  // A straight horizontal segment through the trunk centre, 0.2 m long.
+  for (int i = 0; i <= 10; ++i) markers.planned_arc.push_back(s.base_position + Eigen::Vector3d(-0.1 + 0.02 * i, 0, 0));
+  std::vector<uint8_t> rgba;
+  renderer.render(camera, markers, {s.body_poses, s.foot_position, s.foot_in_contact}, rgba);
+  Eigen::Vector2d at;
+  ASSERT_TRUE(project(camera, w, h, s.base_position, at));
+  EXPECT_LT((pixel(rgba, w, at) - kArcColour).norm(), 0.05) << pixel(rgba, w, at).transpose();
+  // Without the arc the same pixel is the trunk's.
+  renderer.render(camera, SceneMarkers{}, {s.body_poses, s.foot_position, s.foot_in_contact}, rgba);
+  EXPECT_GT((pixel(rgba, w, at) - kArcColour).norm(), 0.3);
+}
+
 TEST(Render, SameTraceGivesIdenticalFrames) {
   Episode e(0.05);
   SceneRenderer renderer(160, 120, e.robot, e.terrain);
