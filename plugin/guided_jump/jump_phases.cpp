@@ -410,8 +410,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
   const double kp_flight = settings_.hold.kp / settings_.flight_kp_division;
   if (phase_ == JumpPhase::kFlight || phase_ == JumpPhase::kDescend) {
     if (any_contact) {
-      // The CoM comes to rest v / wn beyond the touchdown point: with that goal the
-      // critically damped stop is a pure exponential, with no overshoot and return.
+      // The CoM comes to rest landingStop() beyond the touchdown point: with that
+      // goal the critically damped stop is a pure exponential, with no overshoot.
       touchdown_com_ = vec(s.com_position);
       touchdown_com_->head<2>() += landingStop(vec(s.com_velocity));
       enter(JumpPhase::kLanding, s.time);

@@ -45,13 +45,19 @@ Eigen::Vector3d pixel(const std::vector<uint8_t>& rgba, int width, const Eigen::
   return Eigen::Vector3d(rgba[i], rgba[i + 1], rgba[i + 2]) / 255.0;
 }
 
+// From the robot's right, looking at the standing robot and a target 0.8 m ahead.
+Camera sideCamera() {
+  Camera camera;
+  camera.eye = Eigen::Vector3d(0.3, -1.8, 0.5);
+  camera.target = Eigen::Vector3d(0.3, 0, 0.2);
+  return camera;
+}
+
 TEST(Render, PixelsShowSkyGroundRobotAndTarget) {
   Episode e(0.05);
   const int w = 320, h = 240;
   SceneRenderer renderer(w, h, e.robot, e.terrain);
-  Camera camera;
-  camera.eye = Eigen::Vector3d(0.3, -1.8, 0.5);
-  camera.target = Eigen::Vector3d(0.3, 0, 0.2);
+  const Camera camera = sideCamera();
   SceneMarkers markers;
   markers.target = Eigen::Vector3d(0.8, 0, 0);
   const TraceSample& s = e.trace.samples.back();
@@ -84,9 +90,7 @@ TEST(Render, PlannedArcShowsThroughTheRobot) {
   Episode e(0.05);
   const int w = 320, h = 240;
   SceneRenderer renderer(w, h, e.robot, e.terrain);
-  Camera camera;
-  camera.eye = Eigen::Vector3d(0.3, -1.8, 0.5);
-  camera.target = Eigen::Vector3d(0.3, 0, 0.2);
+  const Camera camera = sideCamera();
   const TraceSample& s = e.trace.samples.back();
   SceneMarkers markers;
   // A straight horizontal segment through the trunk centre, 0.2 m long.

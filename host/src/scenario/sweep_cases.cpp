@@ -131,8 +131,8 @@ void addStepPlatform(Scenario& s, const EpisodeCase& episode) {
   const TargetSpec& t = episode.target;
   if (std::abs(t.z) < 1e-9) return;
   const double distance = std::hypot(t.x, t.y);
+  const SourceLocation where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
   if (distance < 2.0 * kLeastEdgeDistance) {
-    const SourceLocation where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
     throw InputError(where, episode.label + ": target z = " + std::to_string(t.z) +
                                 " m needs a platform edge between the start and the target, but the target is " +
                                 std::to_string(distance) + " m from the start (terrain step_platforms)");
@@ -151,7 +151,7 @@ void addStepPlatform(Scenario& s, const EpisodeCase& episode) {
   box.position = {p.base_position[0] + middle * std::cos(azimuth), p.base_position[1] + middle * std::sin(azimuth),
                   s.ground_height + height / 2.0};
   box.yaw = azimuth;
-  box.where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
+  box.where = where;
   s.terrain.push_back(box);
   if (t.z < 0 && !p.on_ground) s.platform.base_position[2] += height;
 }

@@ -362,7 +362,7 @@ std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double 
     Eigen::Index foot = 0;
     if (share.minCoeff(&foot) < min_share) {
       std::ostringstream msg;
-      msg << "stance foot " << foot << " would carry " << share(foot)
+      msg << "stance foot " << legName(static_cast<Leg>(foot)) << " would carry " << share(foot)
           << " of the mean vertical force at t = " << t << " s of the thrust (zero-moment point "
           << zmp.transpose() << ", CoM " << c.transpose() << ")";
       return msg.str();
@@ -477,59 +477,48 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   std::optional<PlannedJump> leg_failure;
   std::optional<PlannedJump> support_failure;
   std::optional<PlannedJump> torque_failure;
-  // Candidates in order: the still start at every rise first (when enabled),
-  // then each rise with the fixed offsets.
+  // Candidates in order: each rise, with the still start first (when enabled),
+  // then the fixed offsets.
   std::vector<std::pair<double, double>> placements;  // (rise, ahead); NaN ahead: the still start
   for (double rise : config.lift_off_rise_m) {
     if (config.still_start_first) placements.emplace_back(rise, kNaN);
     for (double ahead : config.lift_off_ahead_m) placements.emplace_back(rise, ahead);
   }
   for (const auto& [rise, ahead] : placements) {
-    {
-      for (double duration : config.thrust_duration_s) {
-        for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
-          // Without a yaw change every fraction gives the same plan.
-          if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
-          const Candidate cand{rise, ahead, std::clamp(duration, t_range.min, t_range.max), yaw_fraction};
-          PlannedJump plan = planCandidate(target, config, cand);
-          if (plan.feasible && config.workspace) {
-            std::string where;
-            if (!pathReachable(plan, config, &where)) {
-              plan.feasible = false;
-              plan.limit = PlanLimit::kLegWorkspace;
-              plan.reason = "every candidate lift-off loses a stance foot; the first: " + where;
-              if (!leg_failure) leg_failure = plan;
-              continue;
-            }
+    for (double duration : config.thrust_duration_s) {
+      for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
+        // Without a yaw change every fraction gives the same plan.
+        if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
+        const Candidate cand{rise, ahead, std::clamp(duration, t_range.min, t_range.max), yaw_fraction};
+        PlannedJump plan = planCandidate(target, config, cand);
+        if (plan.feasible && config.workspace) {
+          // The leg checks, in order; the first that fails classifies the candidate.
+          auto reject = [&](PlanLimit limit, const std::string& why, std::optional<PlannedJump>& first_of_kind) {
+            plan.feasible = false;
+            plan.limit = limit;
+            plan.reason = why;
+            if (!first_of_kind) first_of_kind = plan;
+          };
+          std::string where;
+          std::optional<std::string> problem;
+          if (!pathReachable(plan, config, &where)) {
+            reject(PlanLimit::kLegWorkspace, "every candidate lift-off loses a stance foot; the first: " + where,
+                   leg_failure);
+          } else if ((problem = thrustLeavesSupport(plan.action, plan.azimuth_rad, config.start_com,
+                                                    config.polarOrigin(), config.workspace->feet, config.gravity,
+                                                    config.min_support_share, config.workspace->path_samples))) {
+            reject(PlanLimit::kSupport, "every candidate in the leg workspace needs a foot to pull; the first: " + *problem,
+                   support_failure);
+          } else if ((problem = thrustExceedsTorque(plan.action, plan.azimuth_rad, config.start_com,
+                                                    config.polarOrigin(), *config.workspace, config.gravity))) {
+            reject(PlanLimit::kTorque,
+                   "every candidate in reach and support needs more torque than the motors have; the first: " + *problem,
+                   torque_failure);
           }
-          if (plan.feasible && config.workspace) {
-            const std::optional<std::string> pull =
-                thrustLeavesSupport(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                    config.workspace->feet, config.gravity, config.min_support_share,
-                                    config.workspace->path_samples);
-            if (pull) {
-              plan.feasible = false;
-              plan.limit = PlanLimit::kSupport;
-              plan.reason = "every candidate in the leg workspace needs a foot to pull; the first: " + *pull;
-              if (!support_failure) support_failure = plan;
-              continue;
-            }
-          }
-          if (plan.feasible && config.workspace) {
-            const std::optional<std::string> torque = thrustExceedsTorque(
-                plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(), *config.workspace, config.gravity);
-            if (torque) {
-              plan.feasible = false;
-              plan.limit = PlanLimit::kTorque;
-              plan.reason = "every candidate in reach and support needs more torque than the motors have; the first: " +
-                            *torque;
-              if (!torque_failure) torque_failure = plan;
-              continue;
-            }
-          }
-          if (plan.feasible) return plan;
-          if (!first_failure) first_failure = plan;
+          if (!plan.feasible) continue;
         }
+        if (plan.feasible) return plan;
+        if (!first_failure) first_failure = plan;
       }
     }
   }
