@@ -14,7 +14,7 @@ namespace pronk::guided_jump {
 namespace {
 
 constexpr int32_t kHoldParamCount = sizeof(kHoldParamDecls) / sizeof(kHoldParamDecls[0]);
-constexpr int32_t kParamCount = kHoldParamCount + 4;
+constexpr int32_t kParamCount = kHoldParamCount + 5;
 
 // The stance controller's parameters, then the jump's. The action is a vector of
 // any size so that its default can be empty ("no action: hold the stance");
@@ -31,6 +31,8 @@ std::array<pronk_param_decl, kParamCount> makeParamDecls() {
                             "thrust feed-forward force: gravity (m g, the paper's) or dynamic (m (a_ref + g))"};
   d[kHoldParamCount + 3] = {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
                             "Kp is divided by this from lift-off to touchdown"};
+  d[kHoldParamCount + 4] = {sizeof(pronk_param_decl), "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
+                            "the landing surface's height above the take-off surface (when the legs extend)"};
   return d;
 }
 
@@ -52,6 +54,7 @@ JumpSettings readJumpSettings(const ParamReader& read) {
     throw InvalidArgument("parameter 'feedforward': '" + ff + "' is neither 'gravity' nor 'dynamic'");
   }
   s.flight_kp_division = read.real("flight_kp_division");
+  s.landing_height = read.real("landing_height");
   return s;
 }
 

@@ -319,6 +319,7 @@ class JumpEnvironment {
     JumpSettings js = settings_.jump;
     js.action.assign(physical.begin(), physical.end());
     js.azimuth = azimuth;
+    js.landing_height = target.z();
     controller_ = std::make_unique<JumpController>(host_, js);
   }
 

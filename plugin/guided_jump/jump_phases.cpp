@@ -229,6 +229,13 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, torque);
 }
 
+double JumpController::timeToFall(double height, double vertical_velocity) const {
+  const double g = -gravity_.z();
+  if (!(g > 0)) return std::numeric_limits<double>::infinity();
+  const double disc = vertical_velocity * vertical_velocity + 2.0 * g * std::max(height, 0.0);
+  return (vertical_velocity + std::sqrt(disc)) / g;
+}
+
 Eigen::Vector2d JumpController::landingStop(const Eigen::Vector3d& v) {
   return jump::landingStopOffset(v, kLandingFriction, kLandingFrequency);
 }
@@ -419,7 +426,12 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       compute(s, torque);
       return;
     }
-    if (phase_ == JumpPhase::kFlight && s.com_velocity[2] < 0.0) {
+    // The legs stay tucked until the extension, kBlendTime long, ends kExtensionLead
+    // before the predicted touchdown on the landing surface: extended at the apex,
+    // the trailing feet of a down-jump hang low over the take-off edge.
+    const double landing_com_z = origin_.z() + settings_.landing_height + standing_height_;
+    if (phase_ == JumpPhase::kFlight && s.com_velocity[2] < 0.0 &&
+        timeToFall(s.com_position[2] - landing_com_z, s.com_velocity[2]) <= kBlendTime + kExtensionLead) {
       const double a = smoothstep((s.time - phase_start_) / kBlendTime);
       for (int j = 0; j < n_; ++j) blend_from_(j) = blend_from_(j) + a * (settings_.tuck[j % 3] - blend_from_(j));
       enter(JumpPhase::kDescend, s.time);
@@ -435,7 +447,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       // vertical speed the CoM will have when it is back at the standing height.
       const Eigen::Matrix3d R = rotationOf(s);
       const Eigen::Matrix3d level = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      const double drop = std::max(0.0, s.com_position[2] - (origin_.z() + standing_height_));
+      const double drop = std::max(0.0, s.com_position[2] - landing_com_z);
       Eigen::Vector3d v_touchdown = vec(s.com_velocity);
       v_touchdown.z() = -std::sqrt(v_touchdown.z() * v_touchdown.z() - 2.0 * gravity_.z() * drop);
       Eigen::Vector3d ahead = Eigen::Vector3d::Zero();

@@ -5,7 +5,8 @@
 //   explosive  UARM part of the ThrustPlan (T_e)         } the trunk orientation the Euler Bezier
 //   flight     from lift-off (all feet off the ground): 0.1 s smoothstep to a tucked pose, Kp / division,
 //              no gravity compensation
-//   descend    from the apex (CoM v_z < 0): 0.1 s smoothstep back to the stance, same gains
+//   descend    after the apex, once the predicted fall to the landing surface (landing_height)
+//              is down to 0.1 s + kExtensionLead: 0.1 s smoothstep back to the stance, same gains
 //   landing    from touchdown (any foot in contact): joint PD towards a level trunk at the stance
 //              height over the feet (IK for the feet in contact, the stance joints for the others),
 //              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation (feet in
@@ -56,6 +57,7 @@ struct JumpSettings {
   double start_delay = 0.2;          // s of standing before the thrust
   Feedforward feedforward = Feedforward::kGravity;
   double flight_kp_division = 3.0;   // Kp in flight and descent = kp / this
+  double landing_height = 0.0;       // m: the landing surface above the take-off surface
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
 };
 
@@ -86,6 +88,7 @@ StartFrame takeOffFrame(const pronk_host_api* host, const pronk_robot_state& sta
 class JumpController {
  public:
   static constexpr double kBlendTime = 0.1;     // s, tuck and extension smoothsteps
+  static constexpr double kExtensionLead = 0.06;  // s: the landing extension ends this long before touchdown
   static constexpr double kLiftOffWait = 0.15;  // s after the plan's end before giving up on lift-off
   static constexpr double kLandingRamp = 0.3;   // s from touchdown until Kp is fully back
   // Landing body wrench: natural frequency of the CoM's stop (rad/s), the share of
@@ -130,6 +133,8 @@ class JumpController {
  private:
   void enter(JumpPhase phase, double time, const std::string& detail = "");
   void startThrust(const pronk_robot_state& s);
+  // Seconds until a CoM height above its touchdown height, rising at vertical_velocity, falls to it.
+  double timeToFall(double height, double vertical_velocity) const;
   void landingReference(const pronk_robot_state& s);
   void thrustTorques(const pronk_robot_state& s, double t, double* torque);
   void jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref, const Eigen::VectorXd& qd_ref,

@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 #include "pronk_command.h"
@@ -75,6 +77,38 @@ TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
   EXPECT_NEAR(jump["landing"]["yaw"].get<double>(), 45.0 * M_PI / 180.0, 12.0 * M_PI / 180.0);  // rad
   EXPECT_TRUE(jump["ended_standing"].get<bool>());
   EXPECT_NEAR(jump["events"]["lift_off"].get<double>(), jump["events"]["planned_lift_off_time"].get<double>(), 0.02);
+}
+
+TEST(JumpRuns, Go1DownJumpFromAPlatformLandsWithinItsTolerance) {
+  // 0.6 m forward and 0.1 m down off a start platform; its tolerance is 6 cm
+  // (measured 1.7 cm). The trailing feet must clear the platform's edge.
+  const std::string dir = outDir("jump_down");
+  const CommandRun r = pronk("run " + source("scenarios/go1/down.xml") + " --policy ballistic --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(dir);
+  ASSERT_EQ(j.size(), 1u) << r.output;
+  const nlohmann::json& jump = j[0];
+  EXPECT_EQ(jump["status"], "ok");
+  EXPECT_LT(jump["error_xy"].get<double>(), 0.06);
+  EXPECT_NEAR(jump["landing"]["z"].get<double>(), -0.1, 0.02);
+  EXPECT_TRUE(jump["ended_standing"].get<bool>());
+  // The trace holds each foot's centre: at the start the feet stand on the
+  // 0.1 m platform, one foot radius (0.02 m) above its top.
+  std::ifstream trace(dir + "/" + jump["trace"].get<std::string>());
+  std::string header, first;
+  ASSERT_TRUE(std::getline(trace, header) && std::getline(trace, first));
+  std::vector<std::string> names, values;
+  for (std::stringstream in(header); in.good();) names.emplace_back(), std::getline(in, names.back(), ',');
+  for (std::stringstream in(first); in.good();) values.emplace_back(), std::getline(in, values.back(), ',');
+  ASSERT_EQ(names.size(), values.size());
+  int feet = 0;
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i].size() > 7 && names[i].compare(names[i].size() - 7, 7, "_foot_z") == 0) {
+      EXPECT_NEAR(std::stod(values[i]), 0.12, 0.005) << names[i];
+      ++feet;
+    }
+  }
+  EXPECT_EQ(feet, 4) << header;
 }
 
 // Runs a one-target test scenario with the ballistic policy, expects its jump

@@ -239,6 +239,24 @@ TEST(Planner, ExplosiveAccelerationCapLimitsWhenTheDistanceRangeIsShort) {
   EXPECT_NE(plan.reason.find("explosive_distance"), std::string::npos) << plan.reason;
 }
 
+TEST(Planner, DownTargetKeepsTheElevationOfAJumpToTheTakeOffHeight) {
+  // A down-jump's arc must not flatten (it would pass low over the take-off
+  // edge): it leaves at the least-speed elevation of a jump to the take-off
+  // height, pi/4 + atan2(z_take-off - z_lift-off, h) / 2, and not at the flatter
+  // least-speed elevation towards the lower target.
+  const PlannerConfig cfg = go1Config(false);
+  const PlannedJump down = planJump({{0.6, 0.0, -0.1}, 0.0}, cfg);
+  ASSERT_TRUE(down.feasible) << down.reason;
+  const auto elevation = [](const Eigen::Vector3d& v) { return std::atan2(v.z(), v.head<2>().norm()); };
+  const Eigen::Vector3d& c_e = down.lift_off.position;
+  const double h = (down.target_com - c_e).head<2>().norm();
+  const double expected = kPi / 4.0 + std::atan2(cfg.start_com.z() - c_e.z(), h) / 2.0;
+  EXPECT_NEAR(elevation(down.lift_off.velocity), expected, 1e-9);
+  const LiftOffHyperbola hyp(c_e, down.target_com, cfg.gravity);
+  EXPECT_LT(elevation(hyp.leastSpeed().velocity), expected - 0.05);
+  EXPECT_LE((flownLanding(down, cfg) - down.target_com).norm(), 1e-9);
+}
+
 TEST(Planner, UpAndDownTargets) {
   const PlannerConfig cfg = go1Config(false);
   for (double dz : {0.4, 0.25, -0.25, -0.4}) {

@@ -16,7 +16,9 @@ void writeTraceCsv(const Trace& trace, const std::string& path) {
   for (const std::string& j : trace.joint_names) out << ",q_" << j;
   for (const std::string& j : trace.joint_names) out << ",qd_" << j;
   for (const std::string& j : trace.joint_names) out << ",tau_" << j;
-  for (const std::string& f : trace.foot_links) out << ',' << f << "_contact," << f << "_fx," << f << "_fy," << f << "_fz";
+  for (const std::string& f : trace.foot_links) {
+    out << ',' << f << "_contact," << f << "_x," << f << "_y," << f << "_z," << f << "_fx," << f << "_fy," << f << "_fz";
+  }
   out << '\n';
   for (const TraceSample& s : trace.samples) {
     out << s.time;
@@ -28,6 +30,7 @@ void writeTraceCsv(const Trace& trace, const std::string& path) {
       for (Eigen::Index i = 0; i < v->size(); ++i) out << ',' << (*v)(i);
     for (size_t f = 0; f < s.foot_position.size(); ++f) {
       out << ',' << int(s.foot_in_contact[f]);
+      for (int i = 0; i < 3; ++i) out << ',' << s.foot_position[f](i);
       for (int i = 0; i < 3; ++i) out << ',' << s.foot_force[f](i);
     }
     out << '\n';
@@ -62,7 +65,7 @@ Trace readTraceCsv(const std::string& path) {
     }
   }
   const size_t nj = trace.joint_names.size(), nf = trace.foot_links.size();
-  const size_t expected = 14 + 3 * nj + 4 * nf;
+  const size_t expected = 14 + 3 * nj + 7 * nf;
   if (header.size() != expected || header[0] != "time") {
     throw InputError({path, 1}, "not a pronk trace header (" + std::to_string(header.size()) + " columns, expected " +
                                     std::to_string(expected) + ")");
@@ -101,8 +104,9 @@ Trace readTraceCsv(const std::string& path) {
       for (size_t i = 0; i < nj; ++i) (*vec)(Eigen::Index(i)) = v[k++];
     for (size_t ft = 0; ft < nf; ++ft) {
       s.foot_in_contact.push_back(v[k++] != 0 ? 1 : 0);
-      s.foot_force.emplace_back(v[k], v[k + 1], v[k + 2]);
-      k += 3;
+      s.foot_position.emplace_back(v[k], v[k + 1], v[k + 2]);
+      s.foot_force.emplace_back(v[k + 3], v[k + 4], v[k + 5]);
+      k += 6;
     }
     trace.samples.push_back(std::move(s));
   }
