@@ -48,9 +48,9 @@ Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, boo
   const double h = hyp.horizontalDistance();
   const double slope = hyp.heightChange() / h;
   // Least-speed elevation, clamped into the range, kept strictly inside the
-  // hyperbola's open elevation interval.
-  // A down target takes the elevation of a jump to the take-off height: flatter,
-  // the arc would pass low over the take-off edge and the trailing feet land on it.
+  // hyperbola's open elevation interval. A down target takes the elevation of a
+  // jump to the take-off height: flatter, the arc would pass low over the
+  // take-off edge and the trailing feet would land on it.
   const double take_off_com_z = cfg.polarOrigin().z() + cfg.standingHeight();
   double theta = kPi / 4.0 + std::atan2(std::max(c_tg.z(), take_off_com_z) - c_e.z(), h) / 2.0;
   theta = std::clamp(theta, el.min, el.max);

@@ -13,7 +13,8 @@
 //   2. actual lift-off CoM c_e in the jump plane, at a chosen height above the
 //      take-off surface and a chosen distance ahead of the start CoM;
 //   3. lift-off velocity v_e on the ballistic hyperbola from c_e to c_tg: the
-//      least-speed member, its elevation clamped into the theta_v range, then
+//      least-speed member (for a down target, at the least-speed elevation of a
+//      jump to the take-off height), its elevation clamped into the theta_v range, then
 //      raised (if needed) until the apex clears the lift-off point by
 //      min_apex_rise;
 //   4. Bezier speed r_v = clamp(|v_e|, r_v min, max_bezier_speed), k = |v_e| / r_v,
