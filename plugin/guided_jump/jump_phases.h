@@ -133,8 +133,6 @@ class JumpController {
  private:
   void enter(JumpPhase phase, double time, const std::string& detail = "");
   void startThrust(const pronk_robot_state& s);
-  // Seconds until a CoM height above its touchdown height, rising at vertical_velocity, falls to it.
-  double timeToFall(double height, double vertical_velocity) const;
   void landingReference(const pronk_robot_state& s);
   void thrustTorques(const pronk_robot_state& s, double t, double* torque);
   void jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref, const Eigen::VectorXd& qd_ref,
