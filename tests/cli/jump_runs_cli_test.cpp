@@ -34,14 +34,23 @@ nlohmann::json results(const std::string& dir) {
   return j;
 }
 
+// Runs a shipped scenario with the ballistic policy, expects exit 0 and one
+// jump, and returns that jump's results.json object (null after a failed
+// expectation); the output directory in *dir.
+nlohmann::json onlyJump(const std::string& scenario, const std::string& out_name, std::string* dir = nullptr) {
+  const std::string out = outDir(out_name);
+  if (dir) *dir = out;
+  const CommandRun r = pronk("run " + source(scenario) + " --policy ballistic --out " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(out);
+  EXPECT_TRUE(j.is_array() && j.size() == 1u) << r.output;
+  return j.is_array() && j.size() == 1u ? j[0] : nlohmann::json();
+}
+
 TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
-  const std::string dir = outDir("jump_forward");
-  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --out " + dir);
-  ASSERT_EQ(r.status, 0) << r.output;
-  const nlohmann::json j = results(dir);
-  ASSERT_TRUE(j.is_array()) << r.output;
-  ASSERT_EQ(j.size(), 1u);
-  const nlohmann::json& jump = j[0];
+  std::string dir;
+  const nlohmann::json jump = onlyJump("scenarios/go1/forward.xml", "jump_forward", &dir);
+  ASSERT_FALSE(jump.is_null());
   EXPECT_EQ(jump["status"], "ok");
   EXPECT_FALSE(jump["failed"].get<bool>());
   EXPECT_DOUBLE_EQ(jump["target"]["x"].get<double>(), 0.4);
@@ -65,12 +74,8 @@ TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
 TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
   // The paper's diagonal jump: 0.3 m forward, 0.2 m left, 45 deg of yaw. Its
   // scenario's tolerances (5 cm, 12 deg; measured 3.2 cm, 4.1 deg) make a miss exit 4.
-  const std::string dir = outDir("jump_diagonal");
-  const CommandRun r = pronk("run " + source("scenarios/go1/diagonal.xml") + " --policy ballistic --out " + dir);
-  ASSERT_EQ(r.status, 0) << r.output;
-  const nlohmann::json j = results(dir);
-  ASSERT_EQ(j.size(), 1u) << r.output;
-  const nlohmann::json& jump = j[0];
+  const nlohmann::json jump = onlyJump("scenarios/go1/diagonal.xml", "jump_diagonal");
+  ASSERT_FALSE(jump.is_null());
   EXPECT_EQ(jump["status"], "ok");
   EXPECT_LT(jump["error_xy"].get<double>(), 0.05);
   EXPECT_LT(jump["error_yaw_deg"].get<double>(), 12.0);
@@ -82,12 +87,9 @@ TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
 TEST(JumpRuns, Go1DownJumpFromAPlatformLandsWithinItsTolerance) {
   // 0.6 m forward and 0.1 m down off a start platform; its tolerance is 6 cm
   // (measured 1.7 cm). The trailing feet must clear the platform's edge.
-  const std::string dir = outDir("jump_down");
-  const CommandRun r = pronk("run " + source("scenarios/go1/down.xml") + " --policy ballistic --out " + dir);
-  ASSERT_EQ(r.status, 0) << r.output;
-  const nlohmann::json j = results(dir);
-  ASSERT_EQ(j.size(), 1u) << r.output;
-  const nlohmann::json& jump = j[0];
+  std::string dir;
+  const nlohmann::json jump = onlyJump("scenarios/go1/down.xml", "jump_down", &dir);
+  ASSERT_FALSE(jump.is_null());
   EXPECT_EQ(jump["status"], "ok");
   EXPECT_LT(jump["error_xy"].get<double>(), 0.06);
   EXPECT_NEAR(jump["landing"]["z"].get<double>(), -0.1, 0.02);
