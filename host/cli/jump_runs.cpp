@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include "controller_factory.h"
+#include "jump_landing.h"
 #include "pronk/episode.h"
 #include "pronk/world.h"
 #include "render/episode_video.h"
@@ -23,50 +24,11 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kDeg = 180.0 / M_PI;
-// A jump ends standing when every foot is down and the trunk's z axis is within
-// this angle of the vertical.
-constexpr double kUprightAngle = 30.0 / kDeg;
-
-double yawOf(const Eigen::Vector4d& q_wxyz) {
-  const Eigen::Quaterniond q(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
-  const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
-  return std::atan2(R(1, 0), R(0, 0));
-}
-
-double wrap(double a) { return std::remainder(a, 2 * M_PI); }
 
 // A metric of the trace, NaN when absent or not finite (JSON null, empty CSV cell).
 double metricOrNaN(const Trace& trace, const char* name) {
   const double* v = trace.findMetric(name);
   return v && std::isfinite(*v) ? *v : NAN;
-}
-
-// Where one jump ended, from its trace alone (the host's view, the same for any
-// environment): the trunk's displacement in the start heading frame.
-struct Landing {
-  Eigen::Vector3d displacement = Eigen::Vector3d::Constant(NAN);
-  double yaw = NAN;        // rad, heading change
-  double error_xy = NAN;   // m
-  double error_yaw = NAN;  // rad, |wrapped|
-  bool standing = false;
-};
-
-Landing landingOf(const Trace& trace, const TargetSpec& target) {
-  Landing l;
-  if (trace.samples.size() < 2) return l;
-  const TraceSample& a = trace.samples.front();
-  const TraceSample& b = trace.samples.back();
-  const double yaw0 = yawOf(a.base_quaternion);
-  l.displacement = Eigen::AngleAxisd(-yaw0, Eigen::Vector3d::UnitZ()) * (b.base_position - a.base_position);
-  l.yaw = wrap(yawOf(b.base_quaternion) - yaw0);
-  l.error_xy = (l.displacement.head<2>() - Eigen::Vector2d(target.x, target.y)).norm();
-  l.error_yaw = std::abs(wrap(l.yaw - target.yaw));
-  const Eigen::Quaterniond q(b.base_quaternion(0), b.base_quaternion(1), b.base_quaternion(2), b.base_quaternion(3));
-  const double tilt = std::acos(std::clamp(q.normalized().toRotationMatrix()(2, 2), -1.0, 1.0));
-  bool all_down = !b.foot_in_contact.empty();
-  for (uint8_t c : b.foot_in_contact) all_down = all_down && c;
-  l.standing = all_down && tilt < kUprightAngle;
-  return l;
 }
 
 struct JumpReport {
@@ -79,7 +41,7 @@ struct JumpReport {
 
 std::string statusOf(const JumpReport& r) {
   if (r.result.rejected) return "rejected";
-  if (r.result.episode.failure) return "failed";
+  if (r.result.episode.failure || !r.landing.end_failure.empty()) return "failed";
   const TargetSpec& t = r.episode.target;
   if ((t.tolerance_xy && !(r.landing.error_xy <= *t.tolerance_xy)) ||
       (t.tolerance_yaw && !(r.landing.error_yaw <= *t.tolerance_yaw))) {
@@ -91,6 +53,7 @@ std::string statusOf(const JumpReport& r) {
 std::string reasonOf(const JumpReport& r) {
   if (r.result.rejected) return *r.result.rejected;
   if (r.result.episode.failure) return r.result.episode.failure->reason + ": " + r.result.episode.failure->detail;
+  if (!r.landing.end_failure.empty()) return r.landing.end_failure;
   if (r.status == "missed") {
     char text[160];
     std::snprintf(text, sizeof text, "error %.1f cm / %.1f deg beyond the tolerance %.1f cm / %.1f deg",
