@@ -14,7 +14,7 @@ namespace pronk::guided_jump {
 namespace {
 
 constexpr int32_t kHoldParamCount = sizeof(kHoldParamDecls) / sizeof(kHoldParamDecls[0]);
-constexpr int32_t kParamCount = kHoldParamCount + 5;
+constexpr int32_t kParamCount = kHoldParamCount + 6;
 
 // The stance controller's parameters, then the jump's. The action is a vector of
 // any size so that its default can be empty ("no action: hold the stance");
@@ -33,6 +33,9 @@ std::array<pronk_param_decl, kParamCount> makeParamDecls() {
                             "Kp is divided by this from lift-off to touchdown"};
   d[kHoldParamCount + 4] = {sizeof(pronk_param_decl), "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
                             "the landing surface's height above the take-off surface (when the legs extend)"};
+  d[kHoldParamCount + 5] = {sizeof(pronk_param_decl), "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
+                            "thrust: the trunk turns against the touchdown attitude error the whole-body angular "
+                            "momentum predicts, at this rate per rad/s (0: off, the paper's)"};
   return d;
 }
 
@@ -55,6 +58,7 @@ JumpSettings readJumpSettings(const ParamReader& read) {
   }
   s.flight_kp_division = read.real("flight_kp_division");
   s.landing_height = read.real("landing_height");
+  s.momentum_gain = read.real("momentum_gain");
   return s;
 }
 

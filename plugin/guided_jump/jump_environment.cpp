@@ -70,6 +70,9 @@ const std::vector<pronk_param_decl>& paramDecls() {
          "thrust feed-forward force: gravity (m g, the paper's) or dynamic (m (a_ref + g))"},
         {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
          "Kp is divided by this from lift-off to touchdown"},
+        {sizeof(pronk_param_decl), "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
+         "thrust: the trunk turns against the touchdown attitude error the whole-body angular momentum predicts, "
+         "at this rate per rad/s (0: off, the paper's)"},
         {sizeof(pronk_param_decl), "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
          "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
@@ -116,6 +119,7 @@ EnvironmentSettings readSettings(const ParamReader& read) {
     throw InvalidArgument("parameter 'feedforward': '" + ff + "' is neither 'gravity' nor 'dynamic'");
   }
   s.jump.flight_kp_division = read.real("flight_kp_division");
+  s.jump.momentum_gain = read.real("momentum_gain");
   s.duration = read.real("duration");
   const std::vector<double> lo = read.vector("action_min"), hi = read.vector("action_max");
   for (int i = 0; i < kActionSize; ++i) s.ranges.bounds[i] = {lo[i], hi[i]};
@@ -428,7 +432,15 @@ class JumpEnvironment {
   void onPhaseChange(JumpPhase phase, const pronk_robot_state& s) {
     const StartFrame S = frame();
     if (phase == JumpPhase::kThrust) record_.start_base_position = S.point(s.base_position);
-    if (phase == JumpPhase::kFlight) record_.lift_off = bodyState(s, S);
+    if (phase == JumpPhase::kFlight) {
+      record_.lift_off = bodyState(s, S);
+      if (const std::optional<Eigen::Vector3d> w = wholeBodyRate(host_)) {
+        const Eigen::Vector3d w_S = S.heading.transpose() * *w;
+        metric("lift_off_body_rate_x", w_S.x());
+        metric("lift_off_body_rate_y", w_S.y());
+        metric("lift_off_body_rate_z", w_S.z());
+      }
+    }
     if (phase == JumpPhase::kDescend) record_.apex = bodyState(s, S);
     if (phase == JumpPhase::kLanding && record_.lift_off) record_.touchdown = bodyState(s, S);
   }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "abi_boundary.h"
@@ -151,6 +153,13 @@ void JumpController::startThrust(const pronk_robot_state& s) {
   const Eigen::Vector3d rpy0 = rpyFromRotation(heading_.transpose() * R);
   orientation_ = std::make_unique<jump::OrientationTrajectory>(rpy0, action_, plan_->duration());
   thrust_start_ = s.time;
+  last_thrust_time_ = s.time;
+  momentum_tilt_.setZero();
+  {
+    const jump::PointState& lo = plan_->liftOff();
+    const jump::BallisticFlight flight({lo.position, lo.velocity}, heading_.transpose() * gravity_);
+    planned_flight_time_ = std::max(0.05, flight.landingTime(standing_height_ + settings_.landing_height).value_or(0.0));
+  }
   for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int f = 0; f < feet_; ++f) centroid += vec(s.foot_position + 3 * f) / feet_;
@@ -172,6 +181,18 @@ void JumpController::startThrust(const pronk_robot_state& s) {
                 plan_->bezierDuration(), plan_->explosiveDuration(), lo.position.x(), lo.position.y(), lo.position.z(),
                 lo.velocity.x(), lo.velocity.y(), lo.velocity.z());
   enter(JumpPhase::kThrust, s.time, detail);
+}
+
+std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host) {
+  if (host->struct_size < offsetof(pronk_host_api, centroidal_momentum) + sizeof(host->centroidal_momentum) ||
+      !host->centroidal_momentum) {
+    return std::nullopt;
+  }
+  Eigen::Vector3d L;
+  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> I;
+  if (host->centroidal_momentum(host->host, L.data(), I.data()) != PRONK_OK) return std::nullopt;
+  const Eigen::Vector3d w = I.ldlt().solve(L);
+  return w.allFinite() ? std::optional<Eigen::Vector3d>(w) : std::nullopt;
 }
 
 Eigen::Matrix3d JumpController::legJacobian(int foot, const Eigen::VectorXd& q) {
@@ -207,9 +228,21 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   const Eigen::Vector3d c_ref = origin_ + heading_ * plan_->position(tc);
   const Eigen::Vector3d v_ref = running ? Eigen::Vector3d(heading_ * plan_->velocity(tc)) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d a_ref = running ? Eigen::Vector3d(heading_ * plan_->acceleration(tc)) : Eigen::Vector3d::Zero();
-  const Eigen::Matrix3d R_des = heading_ * orientation_->rotation(tc);
-  const Eigen::Vector3d w_ref =
+  Eigen::Vector3d w_ref =
       running ? Eigen::Vector3d(heading_ * orientation_->angularVelocityWorld(tc)) : Eigen::Vector3d::Zero();
+  // Whole-body momentum: the legs swinging under the trunk carry angular momentum
+  // the trunk's attitude does not show; the trunk turns against it so that the
+  // whole body's rate I^-1 L follows the plan's rate (the flight keeps L).
+  if (settings_.momentum_gain > 0) {
+    if (const std::optional<Eigen::Vector3d> body = wholeBodyRate(host_)) {
+      const Eigen::Vector3d extra = settings_.momentum_gain * ((w_ref - *body) - momentum_tilt_ / planned_flight_time_);
+      momentum_tilt_ += (s.time - last_thrust_time_) * extra;
+      w_ref += extra;
+    }
+  }
+  last_thrust_time_ = s.time;
+  Eigen::Matrix3d R_des = heading_ * orientation_->rotation(tc);
+  if (momentum_tilt_.norm() > 0) R_des = Eigen::AngleAxisd(momentum_tilt_.norm(), momentum_tilt_.normalized()) * R_des;
   const Eigen::Vector3d trunk_des = vec(s.base_position) + (c_ref - vec(s.com_position));
 
   for (int f = 0; f < feet_; ++f) {
@@ -388,10 +421,16 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       for (int j = 0; j < n_; ++j) blend_from_(j) = s.q[j];
       hip_roll_offset_ = 0;
       last_air_time_ = s.time;
-      char detail[160];
+      char detail[260];
       const Eigen::Vector3d v = heading_.transpose() * vec(s.com_velocity);
-      std::snprintf(detail, sizeof detail, "%.3f s into the thrust (plan %.3f s); CoM velocity (%.3f, %.3f, %.3f) m/s (start frame)",
-                    t, plan_->duration(), v.x(), v.y(), v.z());
+      int n = std::snprintf(detail, sizeof detail,
+                            "%.3f s into the thrust (plan %.3f s); CoM velocity (%.3f, %.3f, %.3f) m/s (start frame)", t,
+                            plan_->duration(), v.x(), v.y(), v.z());
+      if (const std::optional<Eigen::Vector3d> w = wholeBodyRate(host_)) {
+        const Eigen::Vector3d w_S = heading_.transpose() * *w;
+        std::snprintf(detail + n, sizeof detail - n, "; whole-body rate (%.2f, %.2f, %.2f) rad/s", w_S.x(), w_S.y(),
+                      w_S.z());
+      }
       enter(JumpPhase::kFlight, s.time, detail);
     } else if (t > plan_->duration() + kLiftOffWait) {
       enter(JumpPhase::kLanding, s.time, "no lift-off: the jump is abandoned");

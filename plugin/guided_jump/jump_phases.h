@@ -58,6 +58,10 @@ struct JumpSettings {
   Feedforward feedforward = Feedforward::kGravity;
   double flight_kp_division = 3.0;   // Kp in flight and descent = kp / this
   double landing_height = 0.0;       // m: the landing surface above the take-off surface
+  // Thrust: the trunk turns against the whole-body attitude error predicted for the
+  // touchdown, (w_plan - I^-1 L) T_f minus the turn already added, at this rate per
+  // rad/s (1/s; 0: off, the paper's kinematic thrust). Needs a host with ABI 1.2.
+  double momentum_gain = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
 };
 
@@ -84,6 +88,11 @@ struct StartFrame {
   }
 };
 StartFrame takeOffFrame(const pronk_host_api* host, const pronk_robot_state& state);
+
+// The whole body's average angular velocity I^-1 L about its CoM (world) at the
+// current tick, from the host (ABI 1.2); nullopt from an older host. In flight it
+// is what the attitude does on average, whatever the legs do.
+std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host);
 
 class JumpController {
  public:
@@ -170,6 +179,9 @@ class JumpController {
   double standing_height_ = 0;  // CoM above the ground at the thrust start
   double hip_roll_offset_ = 0;  // rad added to every hip in the air (absorbs the trunk's roll momentum)
   double last_air_time_ = 0;    // s, the previous airborne tick
+  Eigen::Vector3d momentum_tilt_ = Eigen::Vector3d::Zero();  // thrust: rotation vector (world) added to R_des
+  double last_thrust_time_ = 0;
+  double planned_flight_time_ = 0.2;  // s, lift-off to touchdown
   std::unique_ptr<jump::ThrustPlan> plan_;
   std::unique_ptr<jump::OrientationTrajectory> orientation_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // S origin, world

@@ -167,7 +167,7 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("jump"), std::string::npos);
-  EXPECT_NE(o.output.find("ABI 1.1"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("ABI 1.2"), std::string::npos) << o.output;
 }
 
 }  // namespace

@@ -113,6 +113,22 @@ TEST(JumpRuns, Go1DownJumpFromAPlatformLandsWithinItsTolerance) {
   EXPECT_EQ(feet, 4) << header;
 }
 
+TEST(JumpRuns, MomentumFeedbackCutsTheWholeBodyPitchRateOfABackwardJump) {
+  // The legs swinging under a level trunk carry angular momentum: without the
+  // feedback the whole body leaves the ground pitching at -1.0 rad/s and lands
+  // 20 deg nose-up; with momentum_gain 6 at -0.45 rad/s, 9 deg (docs/results.md).
+  const nlohmann::json plain = onlyJump("scenarios/go1/backward.xml", "jump_backward_plain");
+  const nlohmann::json fed = onlyJump("tests/cli/scenarios/go1_backward_momentum.xml", "jump_backward_momentum");
+  ASSERT_FALSE(plain.is_null() || fed.is_null());
+  ASSERT_TRUE(plain["metrics"].contains("lift_off_body_rate_y")) << plain["metrics"].dump();
+  const double without = plain["metrics"]["lift_off_body_rate_y"].get<double>();
+  const double with = fed["metrics"]["lift_off_body_rate_y"].get<double>();
+  EXPECT_LT(without, -0.8);
+  EXPECT_LT(std::abs(with), 0.6 * std::abs(without)) << with << " vs " << without;
+  EXPECT_EQ(fed["status"], "ok");
+  EXPECT_LT(fed["error_xy"].get<double>(), 0.05);
+}
+
 // Runs a one-target test scenario with the ballistic policy, expects its jump
 // to be rejected before anything was simulated (exit 4) and returns the jump's
 // failure reason ("" after a failed expectation); the run's output in *output.

@@ -66,6 +66,42 @@ TEST(WorldPhysics, MassPropertiesMatchTheDescription) {
   EXPECT_LT((world.state().com_position - comFromDescription(world)).norm(), 1e-12);
 }
 
+// Rotational inertia of every body about the whole-body CoM, in the world, summed
+// from the description (parallel-axis theorem), not Simbody's.
+Eigen::Matrix3d lockedInertiaFromDescription(const World& world) {
+  const auto poses = world.bodyPoses();
+  const Eigen::Vector3d c = comFromDescription(world);
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (size_t b = 0; b < poses.size(); ++b) {
+    const MassProperties& m = world.robot().bodies[b].mass;
+    const Eigen::Matrix3d R = poses[b].linear();
+    const Eigen::Vector3d r = poses[b] * m.com_body - c;
+    sum += R * m.inertia_com * R.transpose() + m.mass * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+  }
+  return sum;
+}
+
+TEST(WorldPhysics, CentroidalMomentumIsTheLockedInertiaTimesTheRateAndIsKeptInFlight) {
+  SimSpec accurate;  // conservation to the integrator's accuracy (the default one keeps 3e-4)
+  accurate.integrator = "runge_kutta_merson";
+  accurate.accuracy = 1e-8;
+  World world = makeWorld(robotUrdf("go1"), accurate);
+  world.resetTo(Eigen::Vector3d(0, 0, 1.5), 0.3, Eigen::VectorXd::LinSpaced(12, -0.4, 0.6), false);
+  const Eigen::Vector3d w(1.2, -0.7, 2.0);
+  world.setBaseVelocity(Eigen::Vector3d(0.5, 0.2, 1.0), w);
+  const World::CentroidalMomentum m0 = world.centroidalMomentum();
+  EXPECT_LT((m0.locked_inertia - lockedInertiaFromDescription(world)).norm(), 1e-10);
+  // Joints at rest: the whole robot turns as one body at the base's rate.
+  EXPECT_LT((m0.angular - m0.locked_inertia * world.state().base_angular_velocity).norm(), 1e-10);
+  // In flight, with joints that move freely (the spin swings the legs), gravity
+  // exerts no moment about the CoM: the momentum stays, the rate does not.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(world.jointCount());
+  for (int k = 0; k < 300; ++k) ASSERT_TRUE(world.step(zero)) << world.failure()->detail;
+  const World::CentroidalMomentum m1 = world.centroidalMomentum();
+  EXPECT_GT(world.state().qd.norm(), 0.1);
+  EXPECT_LT((m1.angular - m0.angular).norm(), 1e-6 * m0.angular.norm()) << m1.angular.transpose();
+}
+
 TEST(WorldPhysics, ForwardKinematicsMatchesTheLegGeometry) {
   World world = makeWorld(robotUrdf("go1"));
   // Stance (0, 0.75, -1.5): the foot is right below the thigh joint, 2 * 0.213 * cos(0.75) down.

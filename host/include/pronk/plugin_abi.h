@@ -41,6 +41,7 @@
  * Version history:
  *   1.0  first version.
  *   1.1  PRONK_REJECTED; pronk_host_api::report_metric; pronk_environment_ops::prior_action.
+ *   1.2  pronk_host_api::centroidal_momentum.
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -55,7 +56,7 @@ extern "C" {
 #endif
 
 #define PRONK_ABI_MAJOR 1u
-#define PRONK_ABI_MINOR 1u
+#define PRONK_ABI_MINOR 2u
 #define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
 #define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
 #define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
@@ -176,6 +177,12 @@ typedef struct pronk_host_api {
      reported with the episode's results; a later value of the same name replaces
      the earlier one. Names are [a-z0-9_]+. */
   void (*report_metric)(void* host, const char* name, double value);
+  /* 1.2: at the state of the current tick, the whole-body angular momentum about the
+     centre of mass (world, N m s) and the whole body's rotational inertia about the
+     centre of mass with the joints locked (world, kg m^2, 3 x 3 row-major). Either
+     output may be NULL. I^-1 L is the body's average angular velocity: in flight L
+     is constant, whatever the legs do. */
+  pronk_status (*centroidal_momentum)(void* host, double angular_momentum_world[3], double inertia_world[9]);
 } pronk_host_api;
 
 /* Operations on a controller instance. */

@@ -103,6 +103,13 @@ class World {
   // 3 x (6 + joints): d(foot velocity, world)/d(u), u = [base angular velocity
   // (world), base linear velocity (world), joint velocities].
   Eigen::MatrixXd footJacobianWorld(int foot) const;
+  // Whole-body angular momentum about the centre of mass (world, N m s) and the
+  // rotational inertia about it with the joints locked (world, kg m^2).
+  struct CentroidalMomentum {
+    Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d locked_inertia = Eigen::Matrix3d::Zero();
+  };
+  CentroidalMomentum centroidalMomentum() const;
   // Joint torques (controller order) J^T f for forces f (world) at the given
   // feet: what the legs must apply to exert those forces, with the sign of J^T.
   Eigen::VectorXd footForcesToJointTorques(const std::vector<int>& feet,

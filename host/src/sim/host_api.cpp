@@ -92,6 +92,14 @@ pronk_status legJacobianBase(void* host, int32_t foot, const double* q, double* 
   });
 }
 
+pronk_status centroidalMomentum(void* host, double angular[3], double inertia[9]) {
+  return guarded(host, [&] {
+    const World::CentroidalMomentum m = self(host).world().centroidalMomentum();
+    if (angular) Eigen::Map<Eigen::Vector3d>{angular} = m.angular;
+    if (inertia) Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>{inertia} = m.locked_inertia;
+  });
+}
+
 void emitEvent(void* host, double time, const char* name, const char* detail) {
   if (Trace* t = self(host).trace()) t->addEvent(time, name ? name : "", detail ? detail : "");
 }
@@ -121,6 +129,7 @@ HostApi::HostApi(const World& world, Trace* trace) : world_(world), trace_(trace
   api_.emit_event = emitEvent;
   api_.log = log;
   api_.report_metric = reportMetric;
+  api_.centroidal_momentum = centroidalMomentum;
 }
 
 AbiStateView::AbiStateView(const RobotState& s) {

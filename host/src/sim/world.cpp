@@ -454,6 +454,18 @@ void World::readState() {
   }
 }
 
+World::CentroidalMomentum World::centroidalMomentum() const {
+  const Impl& w = *impl_;
+  const SimTK::State& s = w.integ->getState();
+  CentroidalMomentum m;
+  m.angular = toEigen(w.matter.calcSystemCentralMomentum(s)[0]);
+  const SimTK::Inertia central = w.matter.calcSystemMassPropertiesInGround(s).calcCentralInertia();
+  const SimTK::Mat33 I = central.toMat33();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) m.locked_inertia(r, c) = I(r, c);
+  return m;
+}
+
 Eigen::MatrixXd World::footJacobianWorld(int foot) const {
   const Impl& w = *impl_;
   const SimTK::State& s = w.integ->getState();
