@@ -14,6 +14,11 @@ namespace {
 // A state whose kinetic energy per kilogram exceeds this has blown up: it is a
 // whole-body speed of about 32 m/s, ten times a long jump's lift-off speed.
 constexpr double kDivergenceEnergyPerKg = 500.0;
+// Joint end stops (Simbody MobilityLinearStop, a Hunt-Crossley spring): a motor at
+// 35.5 N m (the Go1's calf) holds a joint 0.018 rad past its limit; the
+// dissipation (s/rad) stops a joint that hits the end at 2 rad/s without rebound.
+constexpr double kJointStopStiffness = 2000.0;  // N m / rad
+constexpr double kJointStopDissipation = 0.5;   // s / rad
 
 // Points of a shape (in the body frame) whose entry into the terrain counts as contact.
 std::vector<Eigen::Vector3d> probePoints(const Shape& shape) {
@@ -215,6 +220,12 @@ World::World(const RobotDescription& robot, const PlatformSpec& platform, const 
     const double damping = platform.joints.damping >= 0 ? platform.joints.damping : joint.damping;
     if (damping > 0) {
       SimTK::Force::MobilityLinearDamper(w.forces, w.mb.bodies[joint.child_body], SimTK::MobilizerUIndex(0), damping);
+    }
+    // The URDF's position limits as physical stops: without them a landing could
+    // bend a knee through its mechanical end and still count as standing.
+    if (joint.has_position_limits && joint.lower < joint.upper) {
+      SimTK::Force::MobilityLinearStop(w.forces, w.mb.bodies[joint.child_body], SimTK::MobilizerQIndex(0),
+                                       kJointStopStiffness, kJointStopDissipation, joint.lower, joint.upper);
     }
   }
 
