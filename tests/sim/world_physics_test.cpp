@@ -102,6 +102,24 @@ TEST(WorldPhysics, CentroidalMomentumIsTheLockedInertiaTimesTheRateAndIsKeptInFl
   EXPECT_LT((m1.angular - m0.angular).norm(), 1e-6 * m0.angular.norm()) << m1.angular.transpose();
 }
 
+TEST(WorldPhysics, AJointDrivenIntoItsLimitRestsOnTheEndStop) {
+  // In free fall nothing else loads the joint: at rest the stop's spring carries
+  // the motor's torque, q = upper + tau / k with k = 2000 N m/rad (docs/physics.md).
+  World world = makeWorld(robotUrdf("go1"));
+  world.resetTo(Eigen::Vector3d(0, 0, 3.0), 0.0, world.initialJointPositions(), false);
+  const int hip = 3;  // FL hip
+  const Joint& joint = world.joint(hip);
+  ASSERT_TRUE(joint.has_position_limits);
+  Eigen::VectorXd torque = Eigen::VectorXd::Zero(world.jointCount());
+  torque(hip) = 10.0;
+  for (int k = 0; k < 250; ++k) ASSERT_TRUE(world.step(torque)) << world.failure()->detail;
+  EXPECT_NEAR(world.state().q(hip), joint.upper + 10.0 / 2000.0, 1e-3);
+  EXPECT_NEAR(world.state().qd(hip), 0.0, 1e-2);
+  torque(hip) = -10.0;
+  for (int k = 0; k < 250; ++k) ASSERT_TRUE(world.step(torque)) << world.failure()->detail;
+  EXPECT_NEAR(world.state().q(hip), joint.lower - 10.0 / 2000.0, 1e-3);
+}
+
 TEST(WorldPhysics, ForwardKinematicsMatchesTheLegGeometry) {
   World world = makeWorld(robotUrdf("go1"));
   // Stance (0, 0.75, -1.5): the foot is right below the thigh joint, 2 * 0.213 * cos(0.75) down.
