@@ -426,7 +426,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       int n = std::snprintf(detail, sizeof detail,
                             "%.3f s into the thrust (plan %.3f s); CoM velocity (%.3f, %.3f, %.3f) m/s (start frame)", t,
                             plan_->duration(), v.x(), v.y(), v.z());
-      if (const std::optional<Eigen::Vector3d> w = wholeBodyRate(host_)) {
+      const std::optional<Eigen::Vector3d> w = wholeBodyRate(host_);
+      if (w && n > 0 && n < static_cast<int>(sizeof detail)) {
         const Eigen::Vector3d w_S = heading_.transpose() * *w;
         std::snprintf(detail + n, sizeof detail - n, "; whole-body rate (%.2f, %.2f, %.2f) rad/s", w_S.x(), w_S.y(),
                       w_S.z());

@@ -22,7 +22,9 @@
 //   qd_ref    = J(q_ref)^-1 R_des^T (-(v_ref + w_ref x (p_foot - trunk_des)))
 //   tau       = Kp (q_ref - q) + Kd (qd_ref - qd) - sum_contact J_i^T f_i, clamped
 // with f = G^+ (m (a - g), 0): a = 0 for feedforward "gravity" (the paper's), a = a_ref
-// for "dynamic". After the plan has ended the reference stays at its end point (no
+// for "dynamic". With momentum_gain g > 0, R_des and w_ref also carry a turn at
+//   g ((w_ref - I^-1 L) - tilt / T_f)           (whole-body momentum, host ABI 1.2)
+// that drives the touchdown attitude error the momentum predicts to zero. After the plan has ended the reference stays at its end point (no
 // velocity) until lift-off; without lift-off within kLiftOffWait the jump is abandoned
 // and the controller lands (stance) in place.
 //
