@@ -381,7 +381,14 @@ class JumpEnvironment {
     metric("reward_error_z", r.landing_error_z);
     if (record_.lift_off) metric("lift_off_time", record_.lift_off->time);
     if (record_.apex) metric("apex_time", record_.apex->time);
-    if (record_.touchdown) metric("touchdown_time", record_.touchdown->time);
+    if (record_.touchdown) {
+      metric("touchdown_time", record_.touchdown->time);
+      // The trunk's attitude as the feet touch down (ZYX Euler, start frame): what the
+      // flight's angular momentum did to it.
+      const Eigen::Vector3d rpy = rpyFromRotation(record_.touchdown->orientation.toRotationMatrix());
+      metric("touchdown_roll", rpy.x());
+      metric("touchdown_pitch", rpy.y());
+    }
     if (record_.lift_off) {
       const Eigen::Vector3d dv = record_.lift_off->com_velocity - record_.plan.lift_off_com_velocity;
       const Eigen::Vector3d dp = record_.lift_off->com_position - record_.plan.lift_off_com_position;

@@ -126,6 +126,9 @@ TEST(JumpRuns, MomentumFeedbackCutsTheWholeBodyPitchRateOfABackwardJump) {
   const double with = fed["metrics"]["lift_off_body_rate_y"].get<double>();
   EXPECT_LT(without, -0.8);
   EXPECT_LT(std::abs(with), 0.85 * std::abs(without)) << with << " vs " << without;
+  ASSERT_TRUE(fed["metrics"].contains("touchdown_pitch")) << fed["metrics"].dump();
+  EXPECT_LT(std::abs(fed["metrics"]["touchdown_pitch"].get<double>()),
+            std::abs(plain["metrics"]["touchdown_pitch"].get<double>()));
   EXPECT_EQ(fed["status"], "ok");
   EXPECT_LT(fed["error_xy"].get<double>(), 0.03);
 }
