@@ -16,7 +16,7 @@ namespace {
 constexpr double kDivergenceEnergyPerKg = 500.0;
 // Joint end stops (Simbody MobilityLinearStop, a Hunt-Crossley spring): a motor at
 // 35.5 N m (the Go1's calf) holds a joint 0.018 rad past its limit; the
-// dissipation (s/rad) stops a joint that hits the end at 2 rad/s without rebound.
+// dissipation (s/rad) damps the impact in proportion to the penetration.
 constexpr double kJointStopStiffness = 2000.0;  // N m / rad
 constexpr double kJointStopDissipation = 0.5;   // s / rad
 
