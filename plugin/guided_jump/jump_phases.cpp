@@ -493,12 +493,16 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);
     qd_ref_.setZero();
+    // The hips take over the trunk's roll momentum while the legs are tucked; in
+    // the descent the offset stays as it is (no further turning), so that the
+    // legs reach for the landing (measured: docs/results.md, lateral jumps).
     const double roll_rate = (rotationOf(s).transpose() * vec(s.base_angular_velocity)).x();
-    hip_roll_offset_ += (s.time - last_air_time_) * kHipRollGain * roll_rate;
+    const bool absorbing = phase_ == JumpPhase::kFlight;
+    if (absorbing) hip_roll_offset_ += (s.time - last_air_time_) * kHipRollGain * roll_rate;
     last_air_time_ = s.time;
     for (int j = 0; j < n_; j += 3) {  // joints are (hip, thigh, calf) per leg
       q_ref_(j) += hip_roll_offset_;
-      qd_ref_(j) = kHipRollGain * roll_rate;
+      qd_ref_(j) = absorbing ? kHipRollGain * roll_rate : 0.0;
     }
     jointTorques(s, kp_flight, q_ref_, qd_ref_, false, Eigen::Vector3d::Zero(), torque);
   }
