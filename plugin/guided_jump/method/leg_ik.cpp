@@ -31,6 +31,12 @@ double wrapToPi(double a) {
 // the value wrapped to (-pi, pi]. Sets `inside`.
 double intoRange(double a, const JointRange& range, bool& inside) {
   constexpr double kTolerance = 1e-12;
+  // The common case, first: `a` itself in a range narrower than a turn (then the
+  // only representative inside it), without the remainder below.
+  if (range.max - range.min < kTwoPi && a > -kPi && a <= kPi && range.contains(a, kTolerance)) {
+    inside = true;
+    return a;
+  }
   const double base = wrapToPi(a);
   bool found = false;
   double best = base;

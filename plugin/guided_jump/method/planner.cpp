@@ -116,12 +116,26 @@ void predict(PlannedJump& plan, const PlannerConfig& cfg) {
   plan.touchdown_yaw = plan.action.liftoff_rpy_rad.z() + plan.action.liftoff_rpy_rate_radps.z() * plan.flight_time;
 }
 
-// True when every stance foot stays reachable on the whole thrust path.
-// Plans one candidate. Range problems make it infeasible with a reason; the
-// leg check is done by the caller.
-PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, const Candidate& cand) {
+// The part of a candidate that does not depend on its yaw split: the lift-off
+// state on the ballistic hyperbola and the action without yaw. The fixed point
+// below is most of a candidate's cost, so planJump solves it once for all the
+// yaw splits of a (rise, ahead, duration).
+struct CandidateCore {
+  PlannedJump plan;  // azimuth, target CoM, the action without its yaw split
+  Eigen::Vector3d c_e = Eigen::Vector3d::Zero();
+  Member m;
+  double speed = 0.0;
+  double bezier_speed = 0.0;        // r_v of the speed split
+  double d_needed = 0.0;            // explosive distance the acceleration cap needs
+  double rv_cap = 0.0;
+  std::optional<double> t_flight;  // lift-off to the target height
+  bool in_place = false;
+};
+
+CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& cfg, const Candidate& cand) {
   const ActionRanges& ranges = cfg.ranges;
-  PlannedJump plan;
+  CandidateCore core;
+  PlannedJump& plan = core.plan;
   const Eigen::Vector3d o = cfg.polarOrigin();
   const Eigen::Vector3d& c0 = cfg.start_com;
   const double hs = cfg.standingHeight();
@@ -207,7 +221,33 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
 
   // Flight time to the target height, for the yaw split.
   const BallisticFlight flight(FlightState{c_e, m.velocity}, cfg.gravity);
-  const std::optional<double> t_flight = flight.landingTime(plan.target_com.z());
+  core.t_flight = flight.landingTime(plan.target_com.z());
+  core.c_e = c_e;
+  core.m = m;
+  core.speed = speed;
+  core.bezier_speed = split.r_v;
+  core.d_needed = split.d_needed;
+  core.rv_cap = rv_cap;
+  core.in_place = in_place;
+  return core;
+}
+
+// Plans one candidate from its core: the yaw split, then the range checks.
+// Range problems make it infeasible; `explain` false leaves the reason empty
+// (a search that already holds a reason only needs the verdict). The leg
+// checks are done by the caller.
+PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, const CandidateCore& core,
+                          const Candidate& cand, bool explain) {
+  const ActionRanges& ranges = cfg.ranges;
+  PlannedJump plan = core.plan;
+  JumpAction& a = plan.action;
+  const Eigen::Vector3d& c_e = core.c_e;
+  const Member& m = core.m;
+  const double speed = core.speed;
+  const double rv_cap = core.rv_cap;
+  const bool in_place = core.in_place;
+  const std::optional<double>& t_flight = core.t_flight;
+  const ParameterRange& d_range = ranges[P::kExplosiveDistance];
   const ParameterRange& yaw_r = ranges[P::kLiftOffYaw];
   const ParameterRange& rate_r = ranges[P::kLiftOffYawRate];
   double yaw_lo = 0.0, yaw_rate = 0.0;
@@ -233,10 +273,19 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
     plan.limiting_parameter = p;
     plan.reason = why;
   };
+  // The reasons are sentences; a rejected candidate that nobody reads skips them.
+  auto failQuietly = [&](PlanLimit limit, std::optional<ActionParameter> p) {
+    if (!plan.feasible) return false;
+    if (explain) return true;
+    plan.feasible = false;
+    plan.limit = limit;
+    plan.limiting_parameter = p;
+    return false;
+  };
   if (!m.ok) fail(PlanLimit::kActionRange, P::kVelocityElevation, m.problem);
   if (!in_place) {
     const double lowest = std::atan2(plan.target_com.z() - c_e.z(), (plan.target_com - c_e).head<2>().norm());
-    if (ranges[P::kVelocityElevation].max <= lowest) {
+    if (ranges[P::kVelocityElevation].max <= lowest && failQuietly(PlanLimit::kActionRange, P::kVelocityElevation)) {
       std::ostringstream msg;
       msg << "the target needs a lift-off velocity elevation above " << lowest
           << " rad, beyond the velocity_elevation range max " << ranges[P::kVelocityElevation].max;
@@ -254,7 +303,7 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
   for (ActionParameter p : order) {
     const double v = values[actionIndex(p)];
     const ParameterRange& r = ranges[p];
-    if (!(v >= r.min - kRangeTolerance && v <= r.max + kRangeTolerance)) {
+    if (!(v >= r.min - kRangeTolerance && v <= r.max + kRangeTolerance) && failQuietly(PlanLimit::kActionRange, p)) {
       std::string why = formatRangeProblem(p, v, r);
       if (p == P::kSpeedRatio && v > r.max) {
         std::ostringstream msg;
@@ -269,10 +318,10 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
       fail(PlanLimit::kActionRange, p, why + ctx.str());
     }
   }
-  if (split.d_needed > d_range.max + kRangeTolerance) {
+  if (core.d_needed > d_range.max + kRangeTolerance && failQuietly(PlanLimit::kExplosive, P::kExplosiveDistance)) {
     std::ostringstream msg;
-    msg << "lift-off speed " << speed << " m/s from a Bezier speed of " << split.r_v
-        << " m/s needs an explosive distance of " << split.d_needed << " m at the acceleration cap "
+    msg << "lift-off speed " << speed << " m/s from a Bezier speed of " << core.bezier_speed
+        << " m/s needs an explosive distance of " << core.d_needed << " m at the acceleration cap "
         << cfg.max_explosive_acceleration << " m/s^2, beyond the explosive_distance range max " << d_range.max;
     fail(PlanLimit::kExplosive, P::kExplosiveDistance, msg.str());
   }
@@ -512,11 +561,13 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   }
   for (const auto& [rise, ahead] : placements) {
     for (double duration : config.thrust_duration_s) {
+      std::optional<CandidateCore> core;  // shared by the yaw splits
       for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
         // Without a yaw change every fraction gives the same plan.
         if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
         const Candidate cand{rise, ahead, std::clamp(duration, t_range.min, t_range.max), yaw_fraction};
-        PlannedJump plan = planCandidate(target, config, cand);
+        if (!core) core = solveCandidateCore(target, config, cand);
+        PlannedJump plan = planCandidate(target, config, *core, cand, !first_failure);
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
           auto reject = [&](PlanLimit limit, const std::string& why, std::optional<PlannedJump>& first_of_kind) {
