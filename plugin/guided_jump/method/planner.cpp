@@ -578,6 +578,15 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
           };
           // Only the first rejection of each kind keeps its reason (explain).
           std::optional<std::string> problem;
+          // Once a reason of both kinds is held, which check names a candidate that
+          // needs a foot to pull no longer matters: the support check (no IK) then
+          // goes first and spares the path IK (most of the planning time).
+          if (leg_failure && support_failure &&
+              supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
+                             config.workspace->feet, config.gravity, config.min_support_share,
+                             config.workspace->path_samples, false)) {
+            continue;
+          }
           if ((problem = workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
                                           *config.workspace, !leg_failure))) {
             reject(PlanLimit::kLegWorkspace, "every candidate lift-off loses a stance foot; the first: " + *problem,
