@@ -113,8 +113,8 @@ class JumpController {
   // Angular momentum: I_t w = I_t w' + I_l (w' + qd) with w' = 0 gives
   // qd = w I_t / I_l; the legs' share of the roll inertia about the trunk's axis
   // makes it about 1 for the Go1 and Aliengo, and the low flight gains need more.
-  // Measured on scenarios/go1/lateral.xml (roll from the trace's quaternion at
-  // the touchdown event): -28 deg at touchdown, -53 deg with this gain set to 0.
+  // Only in the flight phase: from the descent on the offset is held, so that the
+  // legs reach for the landing (docs/results.md, lateral jumps).
   static constexpr double kHipRollGain = 1.5;
   static constexpr double kLandingTilt = 4.0;
   static constexpr double kLandingTiltDamping = 0.4;
