@@ -581,17 +581,17 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
           // Once a reason of both kinds is held, which check names a candidate that
           // needs a foot to pull no longer matters: the support check (no IK) then
           // goes first and spares the path IK (most of the planning time).
-          if (leg_failure && support_failure &&
-              supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                             config.workspace->feet, config.gravity, config.min_support_share,
-                             config.workspace->path_samples, false)) {
+          const bool support_first = leg_failure && support_failure;
+          if (support_first && supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
+                                              config.workspace->feet, config.gravity, config.min_support_share,
+                                              config.workspace->path_samples, false)) {
             continue;
           }
           if ((problem = workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
                                           *config.workspace, !leg_failure))) {
             reject(PlanLimit::kLegWorkspace, "every candidate lift-off loses a stance foot; the first: " + *problem,
                    leg_failure);
-          } else if ((problem = supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
+          } else if (!support_first && (problem = supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
                                                config.workspace->feet, config.gravity, config.min_support_share,
                                                config.workspace->path_samples, !support_failure))) {
             reject(PlanLimit::kSupport, "every candidate in the leg workspace needs a foot to pull; the first: " + *problem,
