@@ -419,8 +419,6 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     const double t = s.time - thrust_start_;
     if (!any_contact) {
       for (int j = 0; j < n_; ++j) blend_from_(j) = s.q[j];
-      hip_roll_offset_ = 0;
-      last_air_time_ = s.time;
       char detail[260];
       const Eigen::Vector3d v = heading_.transpose() * vec(s.com_velocity);
       int n = std::snprintf(detail, sizeof detail,
@@ -493,17 +491,6 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);
     qd_ref_.setZero();
-    // The hips take over the trunk's roll momentum while the legs are tucked; in
-    // the descent the offset stays as it is (no further turning), so that the
-    // legs reach for the landing (measured: docs/results.md, lateral jumps).
-    const double roll_rate = (rotationOf(s).transpose() * vec(s.base_angular_velocity)).x();
-    const bool absorbing = phase_ == JumpPhase::kFlight;
-    if (absorbing) hip_roll_offset_ += (s.time - last_air_time_) * kHipRollGain * roll_rate;
-    last_air_time_ = s.time;
-    for (int j = 0; j < n_; j += 3) {  // joints are (hip, thigh, calf) per leg
-      q_ref_(j) += hip_roll_offset_;
-      qd_ref_(j) = absorbing ? kHipRollGain * roll_rate : 0.0;
-    }
     jointTorques(s, kp_flight, q_ref_, qd_ref_, false, Eigen::Vector3d::Zero(), torque);
   }
 }

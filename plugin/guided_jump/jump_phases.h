@@ -108,14 +108,6 @@ class JumpController {
   static constexpr double kLandingFrequency = 5.0;
   static constexpr double kLandingFriction = 0.6;
   static constexpr double kGroundReach = 0.01;  // m below the feet that are down, for a foot in the air
-  // In the air every hip turns at this multiple of the trunk's roll rate (trunk
-  // frame): the legs then take over the roll momentum and the trunk stops rolling.
-  // Angular momentum: I_t w = I_t w' + I_l (w' + qd) with w' = 0 gives
-  // qd = w I_t / I_l; the legs' share of the roll inertia about the trunk's axis
-  // makes it about 1 for the Go1 and Aliengo, and the low flight gains need more.
-  // Only in the flight phase: from the descent on the offset is held, so that the
-  // legs reach for the landing (docs/results.md, lateral jumps).
-  static constexpr double kHipRollGain = 1.5;
   static constexpr double kLandingTilt = 4.0;
   static constexpr double kLandingTiltDamping = 0.4;
 
@@ -179,8 +171,6 @@ class JumpController {
   bool all_down_seen_ = false;  // landing: every foot has touched down
   std::optional<Eigen::Vector3d> touchdown_com_;  // CoM at touchdown after a flight
   double standing_height_ = 0;  // CoM above the ground at the thrust start
-  double hip_roll_offset_ = 0;  // rad added to every hip in the air (absorbs the trunk's roll momentum)
-  double last_air_time_ = 0;    // s, the previous airborne tick
   Eigen::Vector3d momentum_tilt_ = Eigen::Vector3d::Zero();  // thrust: rotation vector (world) added to R_des
   double last_thrust_time_ = 0;
   double planned_flight_time_ = 0.2;  // s, lift-off to touchdown

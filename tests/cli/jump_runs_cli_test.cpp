@@ -73,7 +73,7 @@ TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
 
 TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
   // The paper's diagonal jump: 0.3 m forward, 0.2 m left, 45 deg of yaw. Its
-  // scenario's tolerances (5 cm, 12 deg; measured 3.2 cm, 4.1 deg) make a miss exit 4.
+  // scenario's tolerances (5 cm, 12 deg; measured 3.6 cm, 6.4 deg) make a miss exit 4.
   const nlohmann::json jump = onlyJump("scenarios/go1/diagonal.xml", "jump_diagonal");
   ASSERT_FALSE(jump.is_null());
   EXPECT_EQ(jump["status"], "ok");
@@ -84,14 +84,26 @@ TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {
   EXPECT_NEAR(jump["events"]["lift_off"].get<double>(), jump["events"]["planned_lift_off_time"].get<double>(), 0.02);
 }
 
+TEST(JumpRuns, Go1LateralJumpLandsOnItsFeet) {
+  // 0.3 m to the left. The legs swing across a sideways push and the whole body
+  // leaves the ground rolling: with the least-speed elevation (0.68 rad) it rolled
+  // onto a thigh. The steeper sideways lift-off (1.35 rad) and the momentum
+  // feedback land it 5.8 cm off (tolerance 10 cm), rolled 18.5 deg at touchdown.
+  const nlohmann::json jump = onlyJump("scenarios/go1/lateral.xml", "jump_lateral");
+  ASSERT_FALSE(jump.is_null());
+  EXPECT_EQ(jump["status"], "ok") << jump["failure_reason"];
+  EXPECT_LT(jump["error_xy"].get<double>(), 0.10);
+  EXPECT_NEAR(jump["metrics"]["action_velocity_elevation"].get<double>(), 1.35, 1e-6);
+}
+
 TEST(JumpRuns, Go1DownJumpFromAPlatformLandsWithinItsTolerance) {
-  // 0.6 m forward and 0.1 m down off a start platform; its tolerance is 6 cm
-  // (measured 1.7 cm). The trailing feet must clear the platform's edge.
+  // 0.6 m forward and 0.1 m down off a start platform; its tolerance is 8 cm
+  // (measured 5.0 cm). The trailing feet must clear the platform's edge.
   std::string dir;
   const nlohmann::json jump = onlyJump("scenarios/go1/down.xml", "jump_down", &dir);
   ASSERT_FALSE(jump.is_null());
   EXPECT_EQ(jump["status"], "ok");
-  EXPECT_LT(jump["error_xy"].get<double>(), 0.06);
+  EXPECT_LT(jump["error_xy"].get<double>(), 0.08);
   EXPECT_NEAR(jump["landing"]["z"].get<double>(), -0.1, 0.02);
   EXPECT_TRUE(jump["ended_standing"].get<bool>());
   // The trace holds each foot's centre: at the start the feet stand on the
@@ -114,31 +126,31 @@ TEST(JumpRuns, Go1DownJumpFromAPlatformLandsWithinItsTolerance) {
 }
 
 TEST(JumpRuns, MomentumFeedbackCutsTheWholeBodyPitchRateOfABackwardJump) {
-  // The legs swinging under a level trunk carry angular momentum: without the
-  // feedback the whole body leaves the ground pitching at -0.93 rad/s, lands
-  // 18.5 deg nose-up and 3.1 cm off; with momentum_gain 6 at -0.71 rad/s, 12 deg,
-  // 1.3 cm (docs/results.md).
-  const nlohmann::json plain = onlyJump("scenarios/go1/backward.xml", "jump_backward_plain");
-  const nlohmann::json fed = onlyJump("tests/cli/scenarios/go1_backward_momentum.xml", "jump_backward_momentum");
+  // The legs swinging under a level trunk carry angular momentum: with the paper's
+  // kinematic thrust (momentum_gain 0) the whole body leaves the ground pitching at
+  // -0.93 rad/s, lands 18.5 deg nose-up and 3.1 cm off; with the Go1 files'
+  // momentum_gain 10 at -0.62 rad/s, 10.4 deg, 1.2 cm (docs/results.md).
+  const nlohmann::json plain = onlyJump("tests/cli/scenarios/go1_backward_kinematic.xml", "jump_backward_kinematic");
+  const nlohmann::json fed = onlyJump("scenarios/go1/backward.xml", "jump_backward_fed");
   ASSERT_FALSE(plain.is_null() || fed.is_null());
   ASSERT_TRUE(plain["metrics"].contains("lift_off_body_rate_y")) << plain["metrics"].dump();
   const double without = plain["metrics"]["lift_off_body_rate_y"].get<double>();
   const double with = fed["metrics"]["lift_off_body_rate_y"].get<double>();
   EXPECT_LT(without, -0.8);
-  EXPECT_LT(std::abs(with), 0.85 * std::abs(without)) << with << " vs " << without;
+  EXPECT_LT(std::abs(with), 0.8 * std::abs(without)) << with << " vs " << without;
   ASSERT_TRUE(fed["metrics"].contains("touchdown_pitch")) << fed["metrics"].dump();
   EXPECT_LT(std::abs(fed["metrics"]["touchdown_pitch"].get<double>()),
-            std::abs(plain["metrics"]["touchdown_pitch"].get<double>()));
+            0.8 * std::abs(plain["metrics"]["touchdown_pitch"].get<double>()));
   EXPECT_EQ(fed["status"], "ok");
   EXPECT_LT(fed["error_xy"].get<double>(), 0.03);
 }
 
-TEST(JumpRuns, HipsHoldTheirRollOffsetInTheDescentSoTheLegsReachTheLanding) {
-  // Forward jumps with a sideways component and a turn: the whole body leaves the
-  // ground rolling, the hips take that roll in the air. When they kept turning
-  // through the descent the feet never reached the landing placement and all
-  // three jumps ended on a thigh (25-27 cm off); holding the offset lands them
-  // 2.0, 2.2 and 8.5 cm off (docs/results.md).
+TEST(JumpRuns, ForwardJumpsWithASidewaysComponentAndATurnLand) {
+  // Forward jumps with a sideways component and a turn the other way: the whole
+  // body leaves the ground rolling. With the hips absorbing the roll in the air
+  // and holding it through the descent (commit d962587) they landed 2.0, 2.2 and
+  // 8.5 cm off; with the momentum feedback of the thrust instead (no absorber)
+  // 2.9, 2.9 and 3.1 cm (docs/results.md).
   const std::string dir = outDir("jump_forward_left_turn");
   const CommandRun r = pronk("run " + testScenario("go1_forward_left_turn.xml") + " --policy ballistic --out " + dir);
   EXPECT_EQ(r.status, 0) << r.output;

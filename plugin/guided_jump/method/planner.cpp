@@ -35,7 +35,9 @@ struct Member {
   std::string problem;  // when !ok
 };
 
-Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, bool in_place, const PlannerConfig& cfg) {
+// `mid_heading` is the trunk's yaw halfway through the turn, in S.
+Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, bool in_place, double mid_heading,
+                    const PlannerConfig& cfg) {
   Member m;
   const double g = -cfg.gravity.z();
   if (in_place) {
@@ -53,6 +55,12 @@ Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, boo
   // take-off edge and the trailing feet would land on it.
   const double take_off_com_z = cfg.polarOrigin().z() + cfg.standingHeight();
   double theta = kPi / 4.0 + std::atan2(std::max(c_tg.z(), take_off_com_z) - c_e.z(), h) / 2.0;
+  if (cfg.sideways_elevation_rad > theta) {
+    const Eigen::Vector2d across = (c_tg - c_e).head<2>();
+    const double off_heading = std::sin(std::atan2(across.y(), across.x()) - mid_heading);
+    const double lambda = off_heading * off_heading;
+    theta += (cfg.sideways_elevation_rad - theta) * lambda * lambda;
+  }
   theta = std::clamp(theta, el.min, el.max);
   const double lowest = hyp.minimumElevation() + 1e-9;
   const double highest = kPi / 2.0 - 1e-9;
@@ -146,6 +154,7 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
   const double h_total = std::hypot(disp.x(), disp.y());
   const bool in_place = h_total < kPureTwistDistance;
   const double lift_off_z = o.z() + hs + cand.rise;
+  const double mid_heading = 0.5 * target.yaw_rad;
 
   const ParameterRange& rv_range = ranges[P::kLiftOffSpeed];
   const ParameterRange& d_range = ranges[P::kExplosiveDistance];
@@ -187,7 +196,7 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
   // Plain iteration first (the map is a strong contraction for most targets:
   // a few rounds), damped by half after 20 rounds for the ones that oscillate.
   for (int iter = 0; iter < 200; ++iter) {
-    const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, cfg);
+    const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, mid_heading, cfg);
     if (!m.ok) break;
     const double theta_new = std::atan2(m.velocity.z(), m.velocity.dot(u));
     const double speed_new = m.velocity.norm();
@@ -201,7 +210,7 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
     if (done) break;
   }
   const Eigen::Vector3d c_e = liftOffPoint(theta, guess_speed, d);
-  const Member m = chooseMember(c_e, plan.target_com, in_place, cfg);
+  const Member m = chooseMember(c_e, plan.target_com, in_place, mid_heading, cfg);
   const double speed = m.velocity.norm();
   const Split split = splitSpeed(speed);
   d = std::min(d, d_range.max);
@@ -527,6 +536,9 @@ void PlannerConfig::check() const {
     configError("max_explosive_acceleration must be > 0");
   }
   if (!(std::isfinite(min_apex_rise_m) && min_apex_rise_m >= 0.0)) configError("min_apex_rise_m must be >= 0");
+  if (!std::isnan(sideways_elevation_rad) && !(sideways_elevation_rad > 0.0 && sideways_elevation_rad < kPi / 2.0)) {
+    configError("sideways_elevation_rad must be in (0, pi/2) rad, or NaN (off)");
+  }
   if (!(std::isfinite(in_place_apex_rise_m) && in_place_apex_rise_m > 0.0)) configError("in_place_apex_rise_m must be > 0");
   if (!std::isfinite(min_support_share)) configError("min_support_share must be finite");
   if (workspace) {

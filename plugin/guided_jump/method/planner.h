@@ -142,6 +142,13 @@ struct PlannerConfig {
   double max_bezier_speed_mps = 1.25;        // the prototype's saturation threshold (~1.3 m/s)
   double max_explosive_acceleration = 20.0;  // m/s^2 along the UARM line
   double min_apex_rise_m = 0.03;             // apex above the lift-off CoM
+  // Sideways jumps lift off steeper: the elevation is raised from the rule's
+  // towards this one by lambda^2, lambda = sin^2 of the jump direction off the
+  // trunk's mid-turn heading (half the target yaw). A sideways push over planted
+  // feet swings the legs across the jump and the whole body leaves the ground
+  // rolling; a steeper lift-off velocity lies closer to the legs' axes and
+  // swings them less (docs/method-planner.md, step 3). NaN: off.
+  double sideways_elevation_rad = 1.35;
   // Vertical (in-place) jumps: apex this far above max(lift-off, target) CoM height.
   double in_place_apex_rise_m = 0.10;
 
