@@ -560,13 +560,21 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
     for (double ahead : config.lift_off_ahead_m) placements.emplace_back(rise, ahead);
   }
   for (const auto& [rise, ahead] : placements) {
+    // Only the still start's lift-off point depends on the thrust duration: a
+    // fixed offset solves its fixed point once for every duration.
+    const bool core_per_duration = std::isnan(ahead);
+    std::optional<CandidateCore> placement_core;
     for (double duration : config.thrust_duration_s) {
       std::optional<CandidateCore> core;  // shared by the yaw splits
       for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
         // Without a yaw change every fraction gives the same plan.
         if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
         const Candidate cand{rise, ahead, std::clamp(duration, t_range.min, t_range.max), yaw_fraction};
-        if (!core) core = solveCandidateCore(target, config, cand);
+        if (!core && !core_per_duration && placement_core) {
+          core = placement_core;
+          core->plan.action.thrust_duration_s = cand.thrust_duration;
+        }
+        if (!core) placement_core = core = solveCandidateCore(target, config, cand);
         PlannedJump plan = planCandidate(target, config, *core, cand, !first_failure);
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
