@@ -349,8 +349,13 @@ namespace {
 // The three path checks, each with `explain` false returning an empty reason: a
 // search that already holds a reason of that kind only needs the verdict, and
 // formatting the reasons of rejected candidates was an eighth of planning time.
+std::array<LegReachCheck, kLegCount> reachChecks(const LegWorkspace& ws) {
+  return {LegReachCheck(ws.legs[0]), LegReachCheck(ws.legs[1]), LegReachCheck(ws.legs[2]), LegReachCheck(ws.legs[3])};
+}
+
 std::optional<std::string> workspaceProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                            const Eigen::Vector3d& polar_origin, const LegWorkspace& ws, bool explain) {
+                                            const Eigen::Vector3d& polar_origin, const LegWorkspace& ws,
+                                            const std::array<LegReachCheck, kLegCount>& reach, bool explain) {
   const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   const int n = std::max(ws.path_samples, 1);
@@ -369,7 +374,7 @@ std::optional<std::string> workspaceProblem(const JumpAction& action, double azi
     const double t = thrust.duration() * i / n;
     const Eigen::Matrix3d R = orient.rotation(t);
     const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
-    if (!feetReachable(ws.legs, ws.feet, trunk, R, ws.require_within_limits)) {
+    if (!feetReachable(reach, ws.feet, trunk, R, ws.require_within_limits)) {
       if (!explain) return std::string();
       std::ostringstream msg;
       msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
@@ -465,7 +470,7 @@ std::optional<std::string> torqueProblem(const JumpAction& action, double azimut
 std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
                                                  const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                  const LegWorkspace& ws) {
-  return workspaceProblem(action, azimuth, com_start, polar_origin, ws, true);
+  return workspaceProblem(action, azimuth, com_start, polar_origin, ws, reachChecks(ws), true);
 }
 
 std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double azimuth,
@@ -552,6 +557,8 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   std::optional<PlannedJump> leg_failure;
   std::optional<PlannedJump> support_failure;
   std::optional<PlannedJump> torque_failure;
+  std::optional<std::array<LegReachCheck, kLegCount>> reach;
+  if (config.workspace) reach = reachChecks(*config.workspace);
   // Candidates in order: each rise, with the still start first (when enabled),
   // then the fixed offsets.
   std::vector<std::pair<double, double>> placements;  // (rise, ahead); NaN ahead: the still start
@@ -596,7 +603,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
             continue;
           }
           if ((problem = workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                          *config.workspace, !leg_failure))) {
+                                          *config.workspace, *reach, !leg_failure))) {
             reject(PlanLimit::kLegWorkspace, "every candidate lift-off loses a stance foot; the first: " + *problem,
                    leg_failure);
           } else if (!support_first && (problem = supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
