@@ -234,8 +234,8 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
 
 // Plans one candidate from its core: the yaw split, then the range checks.
 // Range problems make it infeasible; `explain` false leaves the reason empty
-// (a search that already holds a reason only needs the verdict). The leg
-// checks are done by the caller.
+// (a search only needs the verdict). The leg checks and the prediction are
+// done by the caller.
 PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, const CandidateCore& core,
                           const Candidate& cand, bool explain) {
   const ActionRanges& ranges = cfg.ranges;
@@ -326,8 +326,7 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
     fail(PlanLimit::kExplosive, P::kExplosiveDistance, msg.str());
   }
   a = clampToRanges(a, ranges);
-  predict(plan, cfg);
-  return plan;
+  return plan;  // without its prediction (predict)
 }
 
 }  // namespace
@@ -547,16 +546,57 @@ void PlannerConfig::check() const {
   }
 }
 
+namespace {
+
+// A rejected candidate that planJump may return. Only the verdict is found
+// during the search; the reason (a sentence with numbers) and the prediction
+// are written for the one candidate returned: most targets find a feasible
+// candidate and never read them.
+struct Rejection {
+  PlannedJump plan;  // the verdict; no reason or prediction yet
+  CandidateCore core;
+  Candidate cand;
+};
+
+PlannedJump explained(const Rejection& r, const JumpTarget& target, const PlannerConfig& cfg) {
+  PlannedJump plan = r.plan;
+  const JumpAction& a = plan.action;
+  const Eigen::Vector3d o = cfg.polarOrigin();
+  switch (plan.limit) {
+    case PlanLimit::kLegWorkspace:
+      plan.reason = "every candidate lift-off loses a stance foot; the first: " +
+                    *thrustLeavesWorkspace(a, plan.azimuth_rad, cfg.start_com, o, *cfg.workspace);
+      break;
+    case PlanLimit::kSupport:
+      plan.reason = "every candidate in the leg workspace needs a foot to pull; the first: " +
+                    *thrustLeavesSupport(a, plan.azimuth_rad, cfg.start_com, o, cfg.workspace->feet, cfg.gravity,
+                                         cfg.min_support_share, cfg.workspace->path_samples);
+      break;
+    case PlanLimit::kTorque:
+      plan.reason = "every candidate in reach and support needs more torque than the motors have; the first: " +
+                    *thrustExceedsTorque(a, plan.azimuth_rad, cfg.start_com, o, *cfg.workspace, cfg.gravity);
+      break;
+    default:  // the action ranges
+      plan = planCandidate(target, cfg, r.core, r.cand, true);
+  }
+  predict(plan, cfg);
+  return plan;
+}
+
+}  // namespace
+
 PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   config.check();
   if (!target.displacement.allFinite() || !std::isfinite(target.yaw_rad)) {
     throw std::invalid_argument("planJump: the target displacement and yaw must be finite");
   }
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
-  std::optional<PlannedJump> first_failure;
-  std::optional<PlannedJump> leg_failure;
-  std::optional<PlannedJump> support_failure;
-  std::optional<PlannedJump> torque_failure;
+  const Eigen::Vector3d polar_origin = config.polarOrigin();
+  // The first rejected candidate of each kind, in case planJump returns it.
+  std::optional<Rejection> first_failure;  // the action ranges
+  std::optional<Rejection> leg_failure;
+  std::optional<Rejection> support_failure;
+  std::optional<Rejection> torque_failure;
   std::optional<std::array<LegReachCheck, kLegCount>> reach;
   if (config.workspace) reach = reachChecks(*config.workspace);
   // Candidates in order: each rise, with the still start first (when enabled),
@@ -582,51 +622,46 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
           core->plan.action.thrust_duration_s = cand.thrust_duration;
         }
         if (!core) placement_core = core = solveCandidateCore(target, config, cand);
-        PlannedJump plan = planCandidate(target, config, *core, cand, !first_failure);
+        PlannedJump plan = planCandidate(target, config, *core, cand, false);
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
-          auto reject = [&](PlanLimit limit, const std::string& why, std::optional<PlannedJump>& first_of_kind) {
+          auto reject = [&](PlanLimit limit, std::optional<Rejection>& first_of_kind) {
             plan.feasible = false;
             plan.limit = limit;
-            plan.reason = why;
-            if (!first_of_kind) first_of_kind = plan;
+            if (!first_of_kind) first_of_kind = Rejection{plan, *core, cand};
           };
-          // Only the first rejection of each kind keeps its reason (explain).
-          std::optional<std::string> problem;
-          // Once a reason of both kinds is held, which check names a candidate that
-          // needs a foot to pull no longer matters: the support check (no IK) then
-          // goes first and spares the path IK (most of the planning time).
+          const LegWorkspace& ws = *config.workspace;
+          auto leavesSupport = [&] {
+            return supportProblem(plan.action, plan.azimuth_rad, config.start_com, polar_origin, ws.feet, config.gravity,
+                                  config.min_support_share, ws.path_samples, false)
+                .has_value();
+          };
+          // Once a rejection of both kinds is held, which check names a candidate
+          // that needs a foot to pull no longer matters: the support check (no IK)
+          // then goes first and spares the path IK.
           const bool support_first = leg_failure && support_failure;
-          if (support_first && supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                              config.workspace->feet, config.gravity, config.min_support_share,
-                                              config.workspace->path_samples, false)) {
-            continue;
-          }
-          if ((problem = workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                          *config.workspace, *reach, !leg_failure))) {
-            reject(PlanLimit::kLegWorkspace, "every candidate lift-off loses a stance foot; the first: " + *problem,
-                   leg_failure);
-          } else if (!support_first && (problem = supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                               config.workspace->feet, config.gravity, config.min_support_share,
-                                               config.workspace->path_samples, !support_failure))) {
-            reject(PlanLimit::kSupport, "every candidate in the leg workspace needs a foot to pull; the first: " + *problem,
-                   support_failure);
-          } else if ((problem = torqueProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                              *config.workspace, config.gravity, !torque_failure))) {
-            reject(PlanLimit::kTorque,
-                   "every candidate in reach and support needs more torque than the motors have; the first: " + *problem,
-                   torque_failure);
+          if (support_first && leavesSupport()) continue;
+          if (workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, polar_origin, ws, *reach, false)) {
+            reject(PlanLimit::kLegWorkspace, leg_failure);
+          } else if (!support_first && leavesSupport()) {
+            reject(PlanLimit::kSupport, support_failure);
+          } else if (torqueProblem(plan.action, plan.azimuth_rad, config.start_com, polar_origin, ws, config.gravity,
+                                   false)) {
+            reject(PlanLimit::kTorque, torque_failure);
           }
           if (!plan.feasible) continue;
         }
-        if (plan.feasible) return plan;
-        if (!first_failure) first_failure = plan;
+        if (plan.feasible) {
+          predict(plan, config);
+          return plan;
+        }
+        if (!first_failure) first_failure = Rejection{plan, *core, cand};
       }
     }
   }
-  if (torque_failure) return *torque_failure;
-  if (support_failure) return *support_failure;
-  return leg_failure ? *leg_failure : *first_failure;
+  if (torque_failure) return explained(*torque_failure, target, config);
+  if (support_failure) return explained(*support_failure, target, config);
+  return explained(leg_failure ? *leg_failure : *first_failure, target, config);
 }
 
 ReplannedJump replanJump(const JumpTarget& target, const PointState& lift_off_error, const PlannerConfig& config,
