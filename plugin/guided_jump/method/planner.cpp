@@ -63,12 +63,15 @@ Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, boo
   const double V2 = 2.0 * g * cfg.min_apex_rise_m;
   const double t_now = std::tan(theta);
   const double vz2_now = g * h * t_now * t_now / (2.0 * (t_now - slope));
+  bool raised = false;
   if (vz2_now < V2) {
+    const double before = theta;
     const double disc = V2 * V2 - 2.0 * g * h * V2 * slope;
     if (disc >= 0.0) theta = std::max(theta, std::atan((V2 + std::sqrt(disc)) / (g * h)));
     theta = std::min(theta, highest);
+    raised = !(theta == before);
   }
-  const std::optional<LiftOffVelocity> v = hyp.atElevation(theta);
+  const std::optional<LiftOffVelocity> v = hyp.atElevation(theta, raised ? std::tan(theta) : t_now);
   if (!v) {  // cannot happen after the clamps above; kept as a guard
     m.ok = false;
     m.problem = "no ballistic solution at the chosen elevation";
