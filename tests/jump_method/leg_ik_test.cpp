@@ -237,7 +237,9 @@ TEST(LegIk, ReachCheckGivesTheIkVerdict) {
   unlimited.limits = {};
   LegGeometry turn = go1Leg(Leg::kRearRight);  // a thigh range of more than a turn
   turn.limits[1] = JointRange{-4.0, 4.0};
-  std::vector<LegGeometry> legs{unlimited, turn};
+  LegGeometry straight = go1Leg(Leg::kFrontLeft);  // a knee limit near the straight leg
+  straight.limits[2] = JointRange{-3.1, -1e-6};
+  std::vector<LegGeometry> legs{unlimited, turn, straight};
   for (const auto& all : {go1Legs(), aliengoLegs()}) legs.insert(legs.end(), all.begin(), all.end());
   int compared = 0;
   for (const LegGeometry& leg : legs) {
@@ -264,7 +266,7 @@ TEST(LegIk, ReachCheckGivesTheIkVerdict) {
       expectSame(footPosition(leg, q));
     }
   }
-  EXPECT_EQ(compared, 10 * 6000);
+  EXPECT_EQ(compared, 11 * 6000);
 }
 
 TEST(LegIk, GeometryIsChecked) {

@@ -208,7 +208,11 @@ struct LegReach {
   double cos_knee = 0.0;                        // when ok
 };
 
-LegReach legReach(const LegGeometry& leg, const Eigen::Vector3d& p) {
+// `quick`: the distance as sqrt(x^2 + z'^2), within 3e-16 (relative) of hypot,
+// and hypot itself only where that difference could matter: within 1e-14 of a
+// reach bound, or a knee so near straight or folded (|cos| > 1 - 1e-6) that its
+// angle is sensitive to the distance's last bits.
+LegReach legReach(const LegGeometry& leg, const Eigen::Vector3d& p, bool quick = false) {
   LegReach lr;
   if (!p.allFinite()) {
     lr.status = LegIkStatus::kNotFinite;
@@ -229,16 +233,24 @@ LegReach legReach(const LegGeometry& leg, const Eigen::Vector3d& p) {
     return lr;
   }
   lr.z_mag = std::sqrt(std::max(z_sq, 0.0));
-  lr.reach = std::hypot(lr.r.x(), lr.z_mag);  // the same for both abduction solutions
-  if (lr.reach > l1 + l2 + reach_tolerance) {
+  const double x = lr.r.x();
+  const double farthest = l1 + l2 + reach_tolerance;
+  const double closest = std::abs(l1 - l2) - reach_tolerance;
+  // The same for both abduction solutions.
+  lr.reach = quick ? std::sqrt(x * x + lr.z_mag * lr.z_mag) : std::hypot(x, lr.z_mag);
+  if (quick && (std::abs(lr.reach - farthest) <= 1e-14 * farthest || std::abs(lr.reach - closest) <= 1e-14 * farthest)) {
+    return legReach(leg, p);
+  }
+  if (lr.reach > farthest) {
     lr.status = LegIkStatus::kTooFar;
     return lr;
   }
-  if (lr.reach < std::abs(l1 - l2) - reach_tolerance) {
+  if (lr.reach < closest) {
     lr.status = LegIkStatus::kTooClose;
     return lr;
   }
   lr.cos_knee = std::clamp((lr.reach * lr.reach - l1 * l1 - l2 * l2) / (2.0 * l1 * l2), -1.0, 1.0);
+  if (quick && std::abs(lr.cos_knee) > 1.0 - 1e-6) return legReach(leg, p);
   return lr;
 }
 
@@ -399,7 +411,7 @@ LegReachCheck::LegReachCheck(const LegGeometry& leg) : leg_(leg) {
 }
 
 bool LegReachCheck::reaches(const Eigen::Vector3d& foot_in_trunk, bool require_within_limits) const {
-  const LegReach lr = legReach(leg_, foot_in_trunk);
+  const LegReach lr = legReach(leg_, foot_in_trunk, true);
   if (lr.status != LegIkStatus::kOk) return false;
   if (!require_within_limits) return true;
   const double l1 = leg_.thigh_length;
@@ -415,18 +427,21 @@ bool LegReachCheck::reaches(const Eigen::Vector3d& foot_in_trunk, bool require_w
   const double sk = -std::sqrt((1.0 - ck) * (1.0 + ck));
   const double a = l1 + l2 * ck;
   const double b = l2 * sk;
-  const double ab = std::sqrt(a * a + b * b);
+  const double ab2 = a * a + b * b;
   const double y = leg_.side * d;
-  const double yz = std::sqrt(y * y + lr.z_mag * lr.z_mag);
-  const double ryz = std::sqrt(lr.rho2);
+  const double yz2 = y * y + lr.z_mag * lr.z_mag;
   // Short vectors make the IK's angles ill-conditioned: leave those to it.
-  if (ab < tiny || lr.reach < tiny || yz < tiny || ryz < tiny) return solveLegIk(leg_, foot_in_trunk).within_limits;
+  if (ab2 < tiny * tiny || lr.reach < tiny || yz2 < tiny * tiny || lr.rho2 < tiny * tiny) {
+    return solveLegIk(leg_, foot_in_trunk).within_limits;
+  }
+  const double hip_norm = std::sqrt(lr.rho2 * yz2);
+  const double thigh_norm = lr.reach * std::sqrt(ab2);
   const double x = lr.r.x();
   const double ry = lr.r.y();
   const double rz = lr.r.z();
   auto branch = [&](double z) {
-    const Verdict hip = onArc(arcs_[0], ry * y + rz * z, rz * y - ry * z, ryz * yz);
-    const Verdict thigh = onArc(arcs_[1], -z * a - x * b, -x * a + z * b, lr.reach * ab);
+    const Verdict hip = onArc(arcs_[0], ry * y + rz * z, rz * y - ry * z, hip_norm);
+    const Verdict thigh = onArc(arcs_[1], -z * a - x * b, -x * a + z * b, thigh_norm);
     return both(hip, thigh);
   };
   const Verdict knee = onArc(arcs_[2], ck, sk, 1.0);

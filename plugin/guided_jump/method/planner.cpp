@@ -365,24 +365,26 @@ std::optional<std::string> workspaceProblem(const JumpAction& action, double azi
   // and a search over many candidates then rejects them after one sample.
   // Then every fourth sample, then the rest: a path that leaves the workspace
   // for a while is found after a few samples.
-  std::vector<int> order{n};
-  for (int stride : {4, 1}) {
-    for (int i = 0; i < n; i += stride) {
-      if (stride == 1 && i % 4 == 0) continue;
-      order.push_back(i);
-    }
-  }
-  for (int i : order) {
+  auto leaves = [&](int i) {
     const double t = thrust.duration() * i / n;
     const Eigen::Matrix3d R = orient.rotation(t);
     const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
-    if (!feetReachable(reach, ws.feet, trunk, R, ws.require_within_limits)) {
-      if (!explain) return std::string();
-      std::ostringstream msg;
-      msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
-          << " s thrust (CoM " << thrust.position(t).transpose() << ")";
-      return msg.str();
-    }
+    return !feetReachable(reach, ws.feet, trunk, R, ws.require_within_limits);
+  };
+  auto problem = [&](int i) -> std::string {
+    if (!explain) return std::string();
+    const double t = thrust.duration() * i / n;
+    std::ostringstream msg;
+    msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
+        << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+    return msg.str();
+  };
+  if (leaves(n)) return problem(n);
+  for (int i = 0; i < n; i += 4) {
+    if (leaves(i)) return problem(i);
+  }
+  for (int i = 1; i < n; ++i) {
+    if (i % 4 != 0 && leaves(i)) return problem(i);
   }
   return std::nullopt;
 }
