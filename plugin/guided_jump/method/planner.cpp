@@ -355,10 +355,8 @@ std::array<LegReachCheck, kLegCount> reachChecks(const LegWorkspace& ws) {
   return {LegReachCheck(ws.legs[0]), LegReachCheck(ws.legs[1]), LegReachCheck(ws.legs[2]), LegReachCheck(ws.legs[3])};
 }
 
-std::optional<std::string> workspaceProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                            const Eigen::Vector3d& polar_origin, const LegWorkspace& ws,
+std::optional<std::string> workspaceProblem(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
                                             const std::array<LegReachCheck, kLegCount>& reach, bool explain) {
-  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   const int n = std::max(ws.path_samples, 1);
   // The lift-off end first: the stretched legs there are where most plans fail,
@@ -389,12 +387,9 @@ std::optional<std::string> workspaceProblem(const JumpAction& action, double azi
   return std::nullopt;
 }
 
-std::optional<std::string> supportProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                          const Eigen::Vector3d& polar_origin,
-                                          const std::array<Eigen::Vector3d, kLegCount>& feet,
+std::optional<std::string> supportProblem(const ThrustPlan& thrust, const std::array<Eigen::Vector3d, kLegCount>& feet,
                                           const Eigen::Vector3d& gravity, double min_share, int path_samples,
                                           bool explain) {
-  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   double ground = 0.0;
   // Rows: total vertical force, and its moments about the x and y axes; the
   // minimum-norm shares are A^T (A A^T)^-1 b.
@@ -433,11 +428,9 @@ std::optional<std::string> supportProblem(const JumpAction& action, double azimu
   return std::nullopt;
 }
 
-std::optional<std::string> torqueProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                         const Eigen::Vector3d& polar_origin, const LegWorkspace& ws,
+std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
                                          const Eigen::Vector3d& gravity, bool explain) {
   if (!(ws.mass > 0.0)) return std::nullopt;
-  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   Eigen::Matrix3Xd feet(3, kLegCount);
   for (int i = 0; i < kLegCount; ++i) feet.col(i) = ws.feet[i];
@@ -474,20 +467,21 @@ std::optional<std::string> torqueProblem(const JumpAction& action, double azimut
 std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
                                                  const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                  const LegWorkspace& ws) {
-  return workspaceProblem(action, azimuth, com_start, polar_origin, ws, reachChecks(ws), true);
+  return workspaceProblem(ThrustPlan(action, azimuth, com_start, polar_origin), action, ws, reachChecks(ws), true);
 }
 
 std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const std::array<Eigen::Vector3d, kLegCount>& feet,
                                                const Eigen::Vector3d& gravity, double min_share, int path_samples) {
-  return supportProblem(action, azimuth, com_start, polar_origin, feet, gravity, min_share, path_samples, true);
+  return supportProblem(ThrustPlan(action, azimuth, com_start, polar_origin), feet, gravity, min_share, path_samples,
+                        true);
 }
 
 std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const LegWorkspace& ws, const Eigen::Vector3d& gravity) {
-  return torqueProblem(action, azimuth, com_start, polar_origin, ws, gravity, true);
+  return torqueProblem(ThrustPlan(action, azimuth, com_start, polar_origin), action, ws, gravity, true);
 }
 
 LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
@@ -618,6 +612,9 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
     std::optional<CandidateCore> placement_core;
     for (double duration : config.thrust_duration_s) {
       std::optional<CandidateCore> core;  // shared by the yaw splits
+      // So are the thrust and the support verdict: the yaw split only turns the trunk.
+      std::optional<ThrustPlan> thrust;
+      std::optional<bool> leaves_support;
       for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
         // Without a yaw change every fraction gives the same plan.
         if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
@@ -636,22 +633,25 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
             if (!first_of_kind) first_of_kind = Rejection{plan, *core, cand};
           };
           const LegWorkspace& ws = *config.workspace;
+          if (!thrust) thrust.emplace(plan.action, plan.azimuth_rad, config.start_com, polar_origin);
           auto leavesSupport = [&] {
-            return supportProblem(plan.action, plan.azimuth_rad, config.start_com, polar_origin, ws.feet, config.gravity,
-                                  config.min_support_share, ws.path_samples, false)
-                .has_value();
+            if (!leaves_support) {
+              leaves_support =
+                  supportProblem(*thrust, ws.feet, config.gravity, config.min_support_share, ws.path_samples, false)
+                      .has_value();
+            }
+            return *leaves_support;
           };
           // Once a rejection of both kinds is held, which check names a candidate
           // that needs a foot to pull no longer matters: the support check (no IK)
           // then goes first and spares the path IK.
           const bool support_first = leg_failure && support_failure;
           if (support_first && leavesSupport()) continue;
-          if (workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, polar_origin, ws, *reach, false)) {
+          if (workspaceProblem(*thrust, plan.action, ws, *reach, false)) {
             reject(PlanLimit::kLegWorkspace, leg_failure);
           } else if (!support_first && leavesSupport()) {
             reject(PlanLimit::kSupport, support_failure);
-          } else if (torqueProblem(plan.action, plan.azimuth_rad, config.start_com, polar_origin, ws, config.gravity,
-                                   false)) {
+          } else if (torqueProblem(*thrust, plan.action, ws, config.gravity, false)) {
             reject(PlanLimit::kTorque, torque_failure);
           }
           if (!plan.feasible) continue;
