@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 namespace pronk::jump {
@@ -225,6 +226,47 @@ TEST(LegIk, FeetReachableForAStandingTrunkOnly) {
   const Eigen::Vector3d behind = trunk + Eigen::Vector3d(-0.35, 0, -0.12);
   EXPECT_FALSE(feetReachable(legs, feet, behind, level));
   EXPECT_TRUE(feetReachable(legs, feet, behind, level, false));
+}
+
+// LegReachCheck must give solveLegIk's verdict everywhere: in and out of reach,
+// and at joint angles a hair on either side of each limit.
+TEST(LegIk, ReachCheckGivesTheIkVerdict) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coord(-0.6, 0.6), unit(0.0, 1.0);
+  LegGeometry unlimited = go1Leg(Leg::kFrontLeft);
+  unlimited.limits = {};
+  LegGeometry turn = go1Leg(Leg::kRearRight);  // a thigh range of more than a turn
+  turn.limits[1] = JointRange{-4.0, 4.0};
+  LegGeometry straight = go1Leg(Leg::kFrontLeft);  // a knee limit near the straight leg
+  straight.limits[2] = JointRange{-3.1, -1e-6};
+  std::vector<LegGeometry> legs{unlimited, turn, straight};
+  for (const auto& all : {go1Legs(), aliengoLegs()}) legs.insert(legs.end(), all.begin(), all.end());
+  int compared = 0;
+  for (const LegGeometry& leg : legs) {
+    const LegReachCheck check(leg);
+    auto expectSame = [&](const Eigen::Vector3d& foot) {
+      const LegIkResult ik = solveLegIk(leg, foot);
+      EXPECT_EQ(check.reaches(foot, true), ik.ok() && ik.within_limits) << foot.transpose();
+      EXPECT_EQ(check.reaches(foot, false), ik.ok()) << foot.transpose();
+      ++compared;
+    };
+    for (int i = 0; i < 4000; ++i) expectSame(Eigen::Vector3d(coord(rng), coord(rng), coord(rng)));
+    for (int i = 0; i < 2000; ++i) {
+      Eigen::Vector3d q;
+      for (int j = 0; j < 3; ++j) {
+        const JointRange& r = leg.limits[j];
+        q[j] = std::isfinite(r.min) ? r.min + (r.max - r.min) * unit(rng) : 6.0 * unit(rng) - 3.0;
+      }
+      const int j = i % 3;
+      const JointRange& r = leg.limits[j];
+      if (std::isfinite(r.min)) {  // onto a limit, then a hair either side of it
+        const double hair[] = {0.0, 1e-15, -1e-15, 1e-11, -1e-11, 1e-8, -1e-8, 1e-6, -1e-6};
+        q[j] = (i % 2 ? r.min : r.max) + hair[(i / 6) % 9];
+      }
+      expectSame(footPosition(leg, q));
+    }
+  }
+  EXPECT_EQ(compared, 11 * 6000);
 }
 
 TEST(LegIk, GeometryIsChecked) {

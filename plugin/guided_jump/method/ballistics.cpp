@@ -177,6 +177,7 @@ LiftOffHyperbola::LiftOffHyperbola(const Eigen::Vector3d& lift_off_position, con
         h_));
   }
   u_ = Eigen::Vector3d(delta.x() / h_, delta.y() / h_, 0.0);
+  min_elevation_ = std::atan2(dz_, h_);
 }
 
 double LiftOffHyperbola::verticalSpeed(double horizontal_speed) const {
@@ -200,11 +201,13 @@ LiftOffVelocity LiftOffHyperbola::atFlightTime(double flight_time) const {
   return atHorizontalSpeed(h_ / flight_time);
 }
 
-double LiftOffHyperbola::minimumElevation() const { return std::atan2(dz_, h_); }
-
 std::optional<LiftOffVelocity> LiftOffHyperbola::atElevation(double elevation) const {
-  if (!std::isfinite(elevation) || elevation <= minimumElevation() || elevation >= kPi / 2.0) return std::nullopt;
-  const double excess = std::tan(elevation) - dz_ / h_;
+  return atElevation(elevation, std::tan(elevation));
+}
+
+std::optional<LiftOffVelocity> LiftOffHyperbola::atElevation(double elevation, double tan_elevation) const {
+  if (!std::isfinite(elevation) || elevation <= min_elevation_ || elevation >= kPi / 2.0) return std::nullopt;
+  const double excess = tan_elevation - dz_ / h_;
   if (!(excess > 0.0)) return std::nullopt;
   const double s = std::sqrt(g_ * h_ / (2.0 * excess));
   if (!(s > 0.0) || !std::isfinite(s)) return std::nullopt;

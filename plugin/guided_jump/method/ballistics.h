@@ -137,10 +137,13 @@ class LiftOffHyperbola {
   LiftOffVelocity atFlightTime(double flight_time) const;
   // std::nullopt when theta is not strictly between atan(dz/h) and pi/2.
   std::optional<LiftOffVelocity> atElevation(double elevation) const;
+  // The same for a caller that already holds tan(elevation) (the planner's
+  // fixed point needs it before, and calls this in every round).
+  std::optional<LiftOffVelocity> atElevation(double elevation, double tan_elevation) const;
   LiftOffVelocity leastSpeed() const;
 
   // Lower bound of the admissible elevations: atan2(dz, h), rad.
-  double minimumElevation() const;
+  double minimumElevation() const { return min_elevation_; }
 
  private:
   Eigen::Vector3d lift_off_;
@@ -150,6 +153,7 @@ class LiftOffHyperbola {
   double h_ = 0.0;
   double dz_ = 0.0;
   double g_ = 0.0;
+  double min_elevation_ = 0.0;  // computed once: both the planner and atElevation need it
 };
 
 // Why a lift-off state was rejected.

@@ -195,50 +195,101 @@ const char* legIkStatusName(LegIkStatus status) {
   return "unknown";
 }
 
-LegIkResult solveLegIk(const LegGeometry& leg, const Eigen::Vector3d& foot_in_trunk) {
-  LegIkResult result;
-  const Eigen::Vector3d& p = foot_in_trunk;
+namespace {
+
+// The IK up to the knee angle: the part that decides whether the foot is in
+// reach, shared by solveLegIk and LegReachCheck so both decide alike.
+struct LegReach {
+  LegIkStatus status = LegIkStatus::kOk;
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();  // hip joint -> foot
+  double rho2 = 0.0;                            // squared distance from the hip axis
+  double z_mag = 0.0;                           // |z'| in the leg plane
+  double reach = 0.0;                           // thigh joint -> foot
+  double cos_knee = 0.0;                        // when ok
+};
+
+// `quick`: the distance as sqrt(x^2 + z'^2), within 3e-16 (relative) of hypot,
+// and hypot itself only where that difference could matter: within 1e-14 of a
+// reach bound, or a knee so near straight or folded (|cos| > 1 - 1e-6) that its
+// angle is sensitive to the distance's last bits.
+LegReach legReach(const LegGeometry& leg, const Eigen::Vector3d& p, bool quick = false) {
+  LegReach lr;
   if (!p.allFinite()) {
-    result.status = LegIkStatus::kNotFinite;
-    result.message = format("foot position (%g, %g, %g) m is not finite", p.x(), p.y(), p.z());
-    return result;
+    lr.status = LegIkStatus::kNotFinite;
+    return lr;
   }
   const double l1 = leg.thigh_length;
   const double l2 = leg.calf_length;
   const double d = leg.thigh_offset;
   const double reach_tolerance = 1e-12 * (l1 + l2 + d);
-  const Eigen::Vector3d r = p - leg.hipPosition();
+  lr.r = p - leg.hipPosition();
 
   // Leg plane: rotating about x keeps the distance from the hip axis, so
   // r_y^2 + r_z^2 = d^2 + z'^2.
-  const double rho2 = r.y() * r.y() + r.z() * r.z();
-  const double z_sq = rho2 - d * d;
+  lr.rho2 = lr.r.y() * lr.r.y() + lr.r.z() * lr.r.z();
+  const double z_sq = lr.rho2 - d * d;
   if (z_sq < -2.0 * d * reach_tolerance) {
-    result.status = LegIkStatus::kInsideHipOffset;
-    result.message = format("foot (%.4f, %.4f, %.4f) m is %.4f m from the hip axis, inside the thigh offset %.4f m",
-                            p.x(), p.y(), p.z(), std::sqrt(rho2), d);
-    return result;
+    lr.status = LegIkStatus::kInsideHipOffset;
+    return lr;
   }
-  const double z_mag = std::sqrt(std::max(z_sq, 0.0));
+  lr.z_mag = std::sqrt(std::max(z_sq, 0.0));
+  const double x = lr.r.x();
+  const double farthest = l1 + l2 + reach_tolerance;
+  const double closest = std::abs(l1 - l2) - reach_tolerance;
+  // The same for both abduction solutions.
+  lr.reach = quick ? std::sqrt(x * x + lr.z_mag * lr.z_mag) : std::hypot(x, lr.z_mag);
+  if (quick && (std::abs(lr.reach - farthest) <= 1e-14 * farthest || std::abs(lr.reach - closest) <= 1e-14 * farthest)) {
+    return legReach(leg, p);
+  }
+  if (lr.reach > farthest) {
+    lr.status = LegIkStatus::kTooFar;
+    return lr;
+  }
+  if (lr.reach < closest) {
+    lr.status = LegIkStatus::kTooClose;
+    return lr;
+  }
+  lr.cos_knee = std::clamp((lr.reach * lr.reach - l1 * l1 - l2 * l2) / (2.0 * l1 * l2), -1.0, 1.0);
+  if (quick && std::abs(lr.cos_knee) > 1.0 - 1e-6) return legReach(leg, p);
+  return lr;
+}
+
+}  // namespace
+
+LegIkResult solveLegIk(const LegGeometry& leg, const Eigen::Vector3d& foot_in_trunk) {
+  LegIkResult result;
+  const Eigen::Vector3d& p = foot_in_trunk;
+  const LegReach lr = legReach(leg, p);
+  const double l1 = leg.thigh_length;
+  const double l2 = leg.calf_length;
+  const double d = leg.thigh_offset;
+  result.status = lr.status;
+  switch (lr.status) {
+    case LegIkStatus::kOk:
+      break;
+    case LegIkStatus::kNotFinite:
+      result.message = format("foot position (%g, %g, %g) m is not finite", p.x(), p.y(), p.z());
+      return result;
+    case LegIkStatus::kInsideHipOffset:
+      result.message = format("foot (%.4f, %.4f, %.4f) m is %.4f m from the hip axis, inside the thigh offset %.4f m",
+                              p.x(), p.y(), p.z(), std::sqrt(lr.rho2), d);
+      return result;
+    case LegIkStatus::kTooFar:
+      result.message = format("foot (%.4f, %.4f, %.4f) m is %.4f m from the thigh joint; the leg reaches %.4f m",
+                              p.x(), p.y(), p.z(), lr.reach, l1 + l2);
+      return result;
+    case LegIkStatus::kTooClose:
+      result.message =
+          format("foot (%.4f, %.4f, %.4f) m is %.4f m from the thigh joint; the leg folds to %.4f m at least", p.x(),
+                 p.y(), p.z(), lr.reach, std::abs(l1 - l2));
+      return result;
+  }
+  const Eigen::Vector3d& r = lr.r;
+  const double z_mag = lr.z_mag;
   const double x = r.x();
-  const double reach = std::hypot(x, z_mag);  // thigh joint -> foot, the same for both abduction solutions
-  if (reach > l1 + l2 + reach_tolerance) {
-    result.status = LegIkStatus::kTooFar;
-    result.message = format("foot (%.4f, %.4f, %.4f) m is %.4f m from the thigh joint; the leg reaches %.4f m", p.x(),
-                            p.y(), p.z(), reach, l1 + l2);
-    return result;
-  }
-  if (reach < std::abs(l1 - l2) - reach_tolerance) {
-    result.status = LegIkStatus::kTooClose;
-    result.message =
-        format("foot (%.4f, %.4f, %.4f) m is %.4f m from the thigh joint; the leg folds to %.4f m at least", p.x(),
-               p.y(), p.z(), reach, std::abs(l1 - l2));
-    return result;
-  }
 
   // Knee-backward branch: q2 in [-pi, 0].
-  const double cos_knee = std::clamp((reach * reach - l1 * l1 - l2 * l2) / (2.0 * l1 * l2), -1.0, 1.0);
-  const double q2 = -std::acos(cos_knee);
+  const double q2 = -std::acos(lr.cos_knee);
   const double a = l1 + l2 * std::cos(q2);
   const double b = l2 * std::sin(q2);
   const double y = leg.side * d;
@@ -298,6 +349,120 @@ Eigen::Vector3d footVelocityInTrunk(const Eigen::Matrix3d& trunk_rotation, const
                                     const Eigen::Vector3d& foot_velocity) {
   return trunk_rotation.transpose() *
          (foot_velocity - trunk_velocity - trunk_angular_velocity.cross(foot_position - trunk_position));
+}
+
+// ---------------------------------------------------------------------------
+// Reach without the angles
+
+namespace {
+
+// Far enough from a limit that the IK's rounding (about 1e-15 rad) cannot put
+// the angle on the other side of it.
+constexpr double kArcMargin = 1e-7;
+
+LegReachCheck::Arc arcOf(const JointRange& range) {
+  LegReachCheck::Arc arc;
+  if (range.min == -std::numeric_limits<double>::infinity() && range.max == std::numeric_limits<double>::infinity()) {
+    arc.any_angle = true;
+    return arc;
+  }
+  // intoRange tries the representatives within 3 turns of (-pi, pi]: a range
+  // inside +-4 pi narrower than a turn is then the arc of its angles mod 2 pi.
+  const double width = range.max - range.min;
+  if (!(std::isfinite(width) && width < kTwoPi - 1e-6 && std::abs(range.min) <= 4.0 * kPi &&
+        std::abs(range.max) <= 4.0 * kPi)) {
+    arc.exact_only = true;
+    return arc;
+  }
+  const double mid = 0.5 * (range.min + range.max);
+  arc.cos_mid = std::cos(mid);
+  arc.sin_mid = std::sin(mid);
+  arc.cos_half_width = std::cos(0.5 * width);
+  return arc;
+}
+
+enum class Verdict { kNo, kYes, kUnsure };
+
+Verdict both(Verdict a, Verdict b) {
+  if (a == Verdict::kNo || b == Verdict::kNo) return Verdict::kNo;
+  return a == Verdict::kYes && b == Verdict::kYes ? Verdict::kYes : Verdict::kUnsure;
+}
+
+Verdict either(Verdict a, Verdict b) {
+  if (a == Verdict::kYes || b == Verdict::kYes) return Verdict::kYes;
+  return a == Verdict::kNo && b == Verdict::kNo ? Verdict::kNo : Verdict::kUnsure;
+}
+
+// Whether the angle of the vector (c, s), of length `norm`, lies on `arc`:
+// cos(angle - mid) against cos(half width), with kArcMargin either side.
+Verdict onArc(const LegReachCheck::Arc& arc, double c, double s, double norm) {
+  if (arc.any_angle) return Verdict::kYes;
+  if (arc.exact_only) return Verdict::kUnsure;
+  const double excess = c * arc.cos_mid + s * arc.sin_mid - arc.cos_half_width * norm;
+  if (excess > kArcMargin * norm) return Verdict::kYes;
+  if (excess < -kArcMargin * norm) return Verdict::kNo;
+  return Verdict::kUnsure;
+}
+
+}  // namespace
+
+LegReachCheck::LegReachCheck(const LegGeometry& leg) : leg_(leg) {
+  for (int j = 0; j < 3; ++j) arcs_[j] = arcOf(leg.limits[j]);
+}
+
+bool LegReachCheck::reaches(const Eigen::Vector3d& foot_in_trunk, bool require_within_limits) const {
+  const LegReach lr = legReach(leg_, foot_in_trunk, true);
+  if (lr.status != LegIkStatus::kOk) return false;
+  if (!require_within_limits) return true;
+  const double l1 = leg_.thigh_length;
+  const double l2 = leg_.calf_length;
+  const double d = leg_.thigh_offset;
+  // The angles solveLegIk would compute, as vectors: the knee (cos q2, sin q2)
+  // with q2 = -acos(cos_knee); the thigh angle q1 = atan2(-x, -z') - atan2(b, a)
+  // and the hip angle q0 = atan2(r_z, r_y) - atan2(z', y) as the rotation from
+  // the second vector to the first.
+  const double scale = l1 + l2 + d;
+  const double tiny = 1e-6 * scale;
+  const double ck = lr.cos_knee;
+  const double sk = -std::sqrt((1.0 - ck) * (1.0 + ck));
+  const double a = l1 + l2 * ck;
+  const double b = l2 * sk;
+  const double ab2 = a * a + b * b;
+  const double y = leg_.side * d;
+  const double yz2 = y * y + lr.z_mag * lr.z_mag;
+  // Short vectors make the IK's angles ill-conditioned: leave those to it.
+  if (ab2 < tiny * tiny || lr.reach < tiny || yz2 < tiny * tiny || lr.rho2 < tiny * tiny) {
+    return solveLegIk(leg_, foot_in_trunk).within_limits;
+  }
+  const double hip_norm = std::sqrt(lr.rho2 * yz2);
+  const double thigh_norm = lr.reach * std::sqrt(ab2);
+  const double x = lr.r.x();
+  const double ry = lr.r.y();
+  const double rz = lr.r.z();
+  auto branch = [&](double z) {
+    const Verdict hip = onArc(arcs_[0], ry * y + rz * z, rz * y - ry * z, hip_norm);
+    const Verdict thigh = onArc(arcs_[1], -z * a - x * b, -x * a + z * b, thigh_norm);
+    return both(hip, thigh);
+  };
+  const Verdict knee = onArc(arcs_[2], ck, sk, 1.0);
+  if (knee == Verdict::kNo) return false;
+  // The foot-below solution first, the foot-above one only when z' != 0.
+  Verdict within = branch(-lr.z_mag);
+  if (within != Verdict::kYes && lr.z_mag != 0.0) within = either(within, branch(lr.z_mag));
+  within = both(knee, within);
+  if (within == Verdict::kUnsure) return solveLegIk(leg_, foot_in_trunk).within_limits;
+  return within == Verdict::kYes;
+}
+
+bool feetReachable(const std::array<LegReachCheck, kLegCount>& legs,
+                   const std::array<Eigen::Vector3d, kLegCount>& feet_world, const Eigen::Vector3d& trunk_position,
+                   const Eigen::Matrix3d& trunk_rotation, bool require_within_limits) {
+  for (int i = 0; i < kLegCount; ++i) {
+    if (!legs[i].reaches(trunk_rotation.transpose() * (feet_world[i] - trunk_position), require_within_limits)) {
+      return false;
+    }
+  }
+  return true;
 }
 
 bool feetReachable(const std::array<LegGeometry, kLegCount>& legs,

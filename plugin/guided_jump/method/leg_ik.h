@@ -122,11 +122,39 @@ Eigen::Vector3d footVelocityInTrunk(const Eigen::Matrix3d& trunk_rotation, const
                                     const Eigen::Vector3d& trunk_angular_velocity, const Eigen::Vector3d& foot_position,
                                     const Eigen::Vector3d& foot_velocity);
 
+// solveLegIk's verdict (ok, and with require_within_limits within the joint
+// limits) without its angles: each joint angle's cosine against the cosine of
+// its range's half width, so no trigonometry per foot. An angle within 1e-7 rad
+// of a limit, where that comparison could differ from the IK's rounding, and a
+// range this test cannot represent (a full turn or more, beyond +-4 pi) are
+// left to solveLegIk itself, so the verdict is always the IK's. Built once per
+// leg: it holds the cosines of the ranges.
+class LegReachCheck {
+ public:
+  explicit LegReachCheck(const LegGeometry& leg);
+  bool reaches(const Eigen::Vector3d& foot_in_trunk, bool require_within_limits = true) const;
+
+  // Membership of a joint angle in its range modulo 2 pi, as an arc.
+  struct Arc {
+    bool any_angle = false;  // the range holds every angle
+    bool exact_only = false;  // not an arc this test can decide: ask solveLegIk
+    double cos_mid = 1.0, sin_mid = 0.0, cos_half_width = 1.0;
+  };
+
+ private:
+  LegGeometry leg_;
+  std::array<Arc, 3> arcs_;
+};
+
 // A workspace test for a trunk pose: true when every leg reaches its foot,
 // given in the world frame, with the trunk at (position, rotation), and (with
 // require_within_limits) the IK solution is within the joint limits. Use it to
 // build SafetyCheck::workspace.
 bool feetReachable(const std::array<LegGeometry, kLegCount>& legs,
+                   const std::array<Eigen::Vector3d, kLegCount>& feet_world, const Eigen::Vector3d& trunk_position,
+                   const Eigen::Matrix3d& trunk_rotation, bool require_within_limits = true);
+// The same with the legs' checks built once (for many poses of one robot).
+bool feetReachable(const std::array<LegReachCheck, kLegCount>& legs,
                    const std::array<Eigen::Vector3d, kLegCount>& feet_world, const Eigen::Vector3d& trunk_position,
                    const Eigen::Matrix3d& trunk_rotation, bool require_within_limits = true);
 

@@ -71,12 +71,15 @@ Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, boo
   const double V2 = 2.0 * g * cfg.min_apex_rise_m;
   const double t_now = std::tan(theta);
   const double vz2_now = g * h * t_now * t_now / (2.0 * (t_now - slope));
+  bool raised = false;
   if (vz2_now < V2) {
+    const double before = theta;
     const double disc = V2 * V2 - 2.0 * g * h * V2 * slope;
     if (disc >= 0.0) theta = std::max(theta, std::atan((V2 + std::sqrt(disc)) / (g * h)));
     theta = std::min(theta, highest);
+    raised = !(theta == before);
   }
-  const std::optional<LiftOffVelocity> v = hyp.atElevation(theta);
+  const std::optional<LiftOffVelocity> v = hyp.atElevation(theta, raised ? std::tan(theta) : t_now);
   if (!v) {  // cannot happen after the clamps above; kept as a guard
     m.ok = false;
     m.problem = "no ballistic solution at the chosen elevation";
@@ -243,8 +246,8 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
 
 // Plans one candidate from its core: the yaw split, then the range checks.
 // Range problems make it infeasible; `explain` false leaves the reason empty
-// (a search that already holds a reason only needs the verdict). The leg
-// checks are done by the caller.
+// (a search only needs the verdict). The leg checks and the prediction are
+// done by the caller.
 PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, const CandidateCore& core,
                           const Candidate& cand, bool explain) {
   const ActionRanges& ranges = cfg.ranges;
@@ -335,8 +338,7 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
     fail(PlanLimit::kExplosive, P::kExplosiveDistance, msg.str());
   }
   a = clampToRanges(a, ranges);
-  predict(plan, cfg);
-  return plan;
+  return plan;  // without its prediction (predict)
 }
 
 }  // namespace
@@ -358,43 +360,45 @@ namespace {
 // The three path checks, each with `explain` false returning an empty reason: a
 // search that already holds a reason of that kind only needs the verdict, and
 // formatting the reasons of rejected candidates was an eighth of planning time.
-std::optional<std::string> workspaceProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                            const Eigen::Vector3d& polar_origin, const LegWorkspace& ws, bool explain) {
-  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
+std::array<LegReachCheck, kLegCount> reachChecks(const LegWorkspace& ws) {
+  return {LegReachCheck(ws.legs[0]), LegReachCheck(ws.legs[1]), LegReachCheck(ws.legs[2]), LegReachCheck(ws.legs[3])};
+}
+
+std::optional<std::string> workspaceProblem(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
+                                            const std::array<LegReachCheck, kLegCount>& reach, bool explain) {
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   const int n = std::max(ws.path_samples, 1);
   // The lift-off end first: the stretched legs there are where most plans fail,
   // and a search over many candidates then rejects them after one sample.
   // Then every fourth sample, then the rest: a path that leaves the workspace
   // for a while is found after a few samples.
-  std::vector<int> order{n};
-  for (int stride : {4, 1}) {
-    for (int i = 0; i < n; i += stride) {
-      if (stride == 1 && i % 4 == 0) continue;
-      order.push_back(i);
-    }
-  }
-  for (int i : order) {
+  auto leaves = [&](int i) {
     const double t = thrust.duration() * i / n;
     const Eigen::Matrix3d R = orient.rotation(t);
     const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
-    if (!feetReachable(ws.legs, ws.feet, trunk, R, ws.require_within_limits)) {
-      if (!explain) return std::string();
-      std::ostringstream msg;
-      msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
-          << " s thrust (CoM " << thrust.position(t).transpose() << ")";
-      return msg.str();
-    }
+    return !feetReachable(reach, ws.feet, trunk, R, ws.require_within_limits);
+  };
+  auto problem = [&](int i) -> std::string {
+    if (!explain) return std::string();
+    const double t = thrust.duration() * i / n;
+    std::ostringstream msg;
+    msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
+        << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+    return msg.str();
+  };
+  if (leaves(n)) return problem(n);
+  for (int i = 0; i < n; i += 4) {
+    if (leaves(i)) return problem(i);
+  }
+  for (int i = 1; i < n; ++i) {
+    if (i % 4 != 0 && leaves(i)) return problem(i);
   }
   return std::nullopt;
 }
 
-std::optional<std::string> supportProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                          const Eigen::Vector3d& polar_origin,
-                                          const std::array<Eigen::Vector3d, kLegCount>& feet,
+std::optional<std::string> supportProblem(const ThrustPlan& thrust, const std::array<Eigen::Vector3d, kLegCount>& feet,
                                           const Eigen::Vector3d& gravity, double min_share, int path_samples,
                                           bool explain) {
-  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   double ground = 0.0;
   // Rows: total vertical force, and its moments about the x and y axes; the
   // minimum-norm shares are A^T (A A^T)^-1 b.
@@ -433,11 +437,9 @@ std::optional<std::string> supportProblem(const JumpAction& action, double azimu
   return std::nullopt;
 }
 
-std::optional<std::string> torqueProblem(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                                         const Eigen::Vector3d& polar_origin, const LegWorkspace& ws,
+std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
                                          const Eigen::Vector3d& gravity, bool explain) {
   if (!(ws.mass > 0.0)) return std::nullopt;
-  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   Eigen::Matrix3Xd feet(3, kLegCount);
   for (int i = 0; i < kLegCount; ++i) feet.col(i) = ws.feet[i];
@@ -474,20 +476,21 @@ std::optional<std::string> torqueProblem(const JumpAction& action, double azimut
 std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
                                                  const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                  const LegWorkspace& ws) {
-  return workspaceProblem(action, azimuth, com_start, polar_origin, ws, true);
+  return workspaceProblem(ThrustPlan(action, azimuth, com_start, polar_origin), action, ws, reachChecks(ws), true);
 }
 
 std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const std::array<Eigen::Vector3d, kLegCount>& feet,
                                                const Eigen::Vector3d& gravity, double min_share, int path_samples) {
-  return supportProblem(action, azimuth, com_start, polar_origin, feet, gravity, min_share, path_samples, true);
+  return supportProblem(ThrustPlan(action, azimuth, com_start, polar_origin), feet, gravity, min_share, path_samples,
+                        true);
 }
 
 std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const LegWorkspace& ws, const Eigen::Vector3d& gravity) {
-  return torqueProblem(action, azimuth, com_start, polar_origin, ws, gravity, true);
+  return torqueProblem(ThrustPlan(action, azimuth, com_start, polar_origin), action, ws, gravity, true);
 }
 
 LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
@@ -554,16 +557,59 @@ void PlannerConfig::check() const {
   }
 }
 
+namespace {
+
+// A rejected candidate that planJump may return. Only the verdict is found
+// during the search; the reason (a sentence with numbers) and the prediction
+// are written for the one candidate returned: most targets find a feasible
+// candidate and never read them.
+struct Rejection {
+  PlannedJump plan;  // the verdict; no reason or prediction yet
+  CandidateCore core;
+  Candidate cand;
+};
+
+PlannedJump explained(const Rejection& r, const JumpTarget& target, const PlannerConfig& cfg) {
+  PlannedJump plan = r.plan;
+  const JumpAction& a = plan.action;
+  const Eigen::Vector3d o = cfg.polarOrigin();
+  switch (plan.limit) {
+    case PlanLimit::kLegWorkspace:
+      plan.reason = "every candidate lift-off loses a stance foot; the first: " +
+                    *thrustLeavesWorkspace(a, plan.azimuth_rad, cfg.start_com, o, *cfg.workspace);
+      break;
+    case PlanLimit::kSupport:
+      plan.reason = "every candidate in the leg workspace needs a foot to pull; the first: " +
+                    *thrustLeavesSupport(a, plan.azimuth_rad, cfg.start_com, o, cfg.workspace->feet, cfg.gravity,
+                                         cfg.min_support_share, cfg.workspace->path_samples);
+      break;
+    case PlanLimit::kTorque:
+      plan.reason = "every candidate in reach and support needs more torque than the motors have; the first: " +
+                    *thrustExceedsTorque(a, plan.azimuth_rad, cfg.start_com, o, *cfg.workspace, cfg.gravity);
+      break;
+    default:  // the action ranges
+      plan = planCandidate(target, cfg, r.core, r.cand, true);
+  }
+  predict(plan, cfg);
+  return plan;
+}
+
+}  // namespace
+
 PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   config.check();
   if (!target.displacement.allFinite() || !std::isfinite(target.yaw_rad)) {
     throw std::invalid_argument("planJump: the target displacement and yaw must be finite");
   }
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
-  std::optional<PlannedJump> first_failure;
-  std::optional<PlannedJump> leg_failure;
-  std::optional<PlannedJump> support_failure;
-  std::optional<PlannedJump> torque_failure;
+  const Eigen::Vector3d polar_origin = config.polarOrigin();
+  // The first rejected candidate of each kind, in case planJump returns it.
+  std::optional<Rejection> first_failure;  // the action ranges
+  std::optional<Rejection> leg_failure;
+  std::optional<Rejection> support_failure;
+  std::optional<Rejection> torque_failure;
+  std::optional<std::array<LegReachCheck, kLegCount>> reach;
+  if (config.workspace) reach = reachChecks(*config.workspace);
   // Candidates in order: each rise, with the still start first (when enabled),
   // then the fixed offsets.
   std::vector<std::pair<double, double>> placements;  // (rise, ahead); NaN ahead: the still start
@@ -572,58 +618,67 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
     for (double ahead : config.lift_off_ahead_m) placements.emplace_back(rise, ahead);
   }
   for (const auto& [rise, ahead] : placements) {
+    // Only the still start's lift-off point depends on the thrust duration: a
+    // fixed offset solves its fixed point once for every duration.
+    const bool core_per_duration = std::isnan(ahead);
+    std::optional<CandidateCore> placement_core;
     for (double duration : config.thrust_duration_s) {
       std::optional<CandidateCore> core;  // shared by the yaw splits
+      // So are the thrust and the support verdict: the yaw split only turns the trunk.
+      std::optional<ThrustPlan> thrust;
+      std::optional<bool> leaves_support;
       for (double yaw_fraction : config.yaw_at_lift_off_fraction) {
         // Without a yaw change every fraction gives the same plan.
         if (target.yaw_rad == 0.0 && yaw_fraction != config.yaw_at_lift_off_fraction.front()) continue;
         const Candidate cand{rise, ahead, std::clamp(duration, t_range.min, t_range.max), yaw_fraction};
-        if (!core) core = solveCandidateCore(target, config, cand);
-        PlannedJump plan = planCandidate(target, config, *core, cand, !first_failure);
+        if (!core && !core_per_duration && placement_core) {
+          core = placement_core;
+          core->plan.action.thrust_duration_s = cand.thrust_duration;
+        }
+        if (!core) placement_core = core = solveCandidateCore(target, config, cand);
+        PlannedJump plan = planCandidate(target, config, *core, cand, false);
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
-          auto reject = [&](PlanLimit limit, const std::string& why, std::optional<PlannedJump>& first_of_kind) {
+          auto reject = [&](PlanLimit limit, std::optional<Rejection>& first_of_kind) {
             plan.feasible = false;
             plan.limit = limit;
-            plan.reason = why;
-            if (!first_of_kind) first_of_kind = plan;
+            if (!first_of_kind) first_of_kind = Rejection{plan, *core, cand};
           };
-          // Only the first rejection of each kind keeps its reason (explain).
-          std::optional<std::string> problem;
-          // Once a reason of both kinds is held, which check names a candidate that
-          // needs a foot to pull no longer matters: the support check (no IK) then
-          // goes first and spares the path IK (most of the planning time).
+          const LegWorkspace& ws = *config.workspace;
+          if (!thrust) thrust.emplace(plan.action, plan.azimuth_rad, config.start_com, polar_origin);
+          auto leavesSupport = [&] {
+            if (!leaves_support) {
+              leaves_support =
+                  supportProblem(*thrust, ws.feet, config.gravity, config.min_support_share, ws.path_samples, false)
+                      .has_value();
+            }
+            return *leaves_support;
+          };
+          // Once a rejection of both kinds is held, which check names a candidate
+          // that needs a foot to pull no longer matters: the support check (no IK)
+          // then goes first and spares the path IK.
           const bool support_first = leg_failure && support_failure;
-          if (support_first && supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                              config.workspace->feet, config.gravity, config.min_support_share,
-                                              config.workspace->path_samples, false)) {
-            continue;
-          }
-          if ((problem = workspaceProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                          *config.workspace, !leg_failure))) {
-            reject(PlanLimit::kLegWorkspace, "every candidate lift-off loses a stance foot; the first: " + *problem,
-                   leg_failure);
-          } else if (!support_first && (problem = supportProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                               config.workspace->feet, config.gravity, config.min_support_share,
-                                               config.workspace->path_samples, !support_failure))) {
-            reject(PlanLimit::kSupport, "every candidate in the leg workspace needs a foot to pull; the first: " + *problem,
-                   support_failure);
-          } else if ((problem = torqueProblem(plan.action, plan.azimuth_rad, config.start_com, config.polarOrigin(),
-                                              *config.workspace, config.gravity, !torque_failure))) {
-            reject(PlanLimit::kTorque,
-                   "every candidate in reach and support needs more torque than the motors have; the first: " + *problem,
-                   torque_failure);
+          if (support_first && leavesSupport()) continue;
+          if (workspaceProblem(*thrust, plan.action, ws, *reach, false)) {
+            reject(PlanLimit::kLegWorkspace, leg_failure);
+          } else if (!support_first && leavesSupport()) {
+            reject(PlanLimit::kSupport, support_failure);
+          } else if (torqueProblem(*thrust, plan.action, ws, config.gravity, false)) {
+            reject(PlanLimit::kTorque, torque_failure);
           }
           if (!plan.feasible) continue;
         }
-        if (plan.feasible) return plan;
-        if (!first_failure) first_failure = plan;
+        if (plan.feasible) {
+          predict(plan, config);
+          return plan;
+        }
+        if (!first_failure) first_failure = Rejection{plan, *core, cand};
       }
     }
   }
-  if (torque_failure) return *torque_failure;
-  if (support_failure) return *support_failure;
-  return leg_failure ? *leg_failure : *first_failure;
+  if (torque_failure) return explained(*torque_failure, target, config);
+  if (support_failure) return explained(*support_failure, target, config);
+  return explained(leg_failure ? *leg_failure : *first_failure, target, config);
 }
 
 ReplannedJump replanJump(const JumpTarget& target, const PointState& lift_off_error, const PlannerConfig& config,
