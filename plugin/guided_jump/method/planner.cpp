@@ -35,8 +35,19 @@ struct Member {
   std::string problem;  // when !ok
 };
 
-// `mid_heading` is the trunk's yaw halfway through the turn, in S.
-Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, bool in_place, double mid_heading,
+// lambda^2 of the sideways rule (docs/method-planner.md, step 3): lambda is the
+// squared sine of the jump plane's azimuth off the trunk's heading halfway
+// through the turn. The lift-off point lies on the jump plane, so the direction
+// from it to the target is the azimuth itself, the same for every candidate.
+double sidewaysWeight(double azimuth, double target_yaw) {
+  const double off_heading = std::sin(azimuth - 0.5 * target_yaw);
+  const double lambda = off_heading * off_heading;
+  return lambda * lambda;
+}
+
+// `sideways_weight` is lambda^2 of the sideways rule (sidewaysWeight): how far
+// the elevation moves from the least-speed one towards sideways_elevation_rad.
+Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, bool in_place, double sideways_weight,
                     const PlannerConfig& cfg) {
   Member m;
   const double g = -cfg.gravity.z();
@@ -55,12 +66,7 @@ Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, boo
   // take-off edge and the trailing feet would land on it.
   const double take_off_com_z = cfg.polarOrigin().z() + cfg.standingHeight();
   double theta = kPi / 4.0 + std::atan2(std::max(c_tg.z(), take_off_com_z) - c_e.z(), h) / 2.0;
-  if (cfg.sideways_elevation_rad > theta) {
-    const Eigen::Vector2d across = (c_tg - c_e).head<2>();
-    const double off_heading = std::sin(std::atan2(across.y(), across.x()) - mid_heading);
-    const double lambda = off_heading * off_heading;
-    theta += (cfg.sideways_elevation_rad - theta) * lambda * lambda;
-  }
+  if (cfg.sideways_elevation_rad > theta) theta += (cfg.sideways_elevation_rad - theta) * sideways_weight;
   theta = std::clamp(theta, el.min, el.max);
   const double lowest = hyp.minimumElevation() + 1e-9;
   const double highest = kPi / 2.0 - 1e-9;
@@ -157,7 +163,7 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
   const double h_total = std::hypot(disp.x(), disp.y());
   const bool in_place = h_total < kPureTwistDistance;
   const double lift_off_z = o.z() + hs + cand.rise;
-  const double mid_heading = 0.5 * target.yaw_rad;
+  const double sideways_weight = sidewaysWeight(plan.azimuth_rad, target.yaw_rad);
 
   const ParameterRange& rv_range = ranges[P::kLiftOffSpeed];
   const ParameterRange& d_range = ranges[P::kExplosiveDistance];
@@ -199,7 +205,7 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
   // Plain iteration first (the map is a strong contraction for most targets:
   // a few rounds), damped by half after 20 rounds for the ones that oscillate.
   for (int iter = 0; iter < 200; ++iter) {
-    const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, mid_heading, cfg);
+    const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, sideways_weight, cfg);
     if (!m.ok) break;
     const double theta_new = std::atan2(m.velocity.z(), m.velocity.dot(u));
     const double speed_new = m.velocity.norm();
@@ -213,7 +219,7 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
     if (done) break;
   }
   const Eigen::Vector3d c_e = liftOffPoint(theta, guess_speed, d);
-  const Member m = chooseMember(c_e, plan.target_com, in_place, mid_heading, cfg);
+  const Member m = chooseMember(c_e, plan.target_com, in_place, sideways_weight, cfg);
   const double speed = m.velocity.norm();
   const Split split = splitSpeed(speed);
   d = std::min(d, d_range.max);
