@@ -151,24 +151,48 @@ struct CandidateCore {
   double d_needed = 0.0;            // explosive distance the acceleration cap needs
   double rv_cap = 0.0;
   std::optional<double> t_flight;  // lift-off to the target height
+  double lowest_elevation = 0.0;   // of a lift-off velocity from c_e that reaches the target (not in place)
   bool in_place = false;
 };
 
-CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& cfg, const Candidate& cand) {
+// What every candidate of a target shares: its jump plane, target CoM and
+// sideways weight, computed once per planJump rather than per candidate.
+struct TargetFrame {
+  double azimuth = 0.0;
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();  // horizontal unit vector of the jump plane
+  Eigen::Vector3d target_com = Eigen::Vector3d::Zero();
+  double h_total = 0.0;  // horizontal target distance
+  bool in_place = false;
+  double sideways_weight = 0.0;
+};
+
+TargetFrame targetFrame(const JumpTarget& target, const PlannerConfig& cfg) {
+  TargetFrame f;
+  const Eigen::Vector3d& c0 = cfg.start_com;
+  const Eigen::Vector3d& disp = target.displacement;
+  f.azimuth = jumpPlaneAzimuth(disp);
+  f.u = Eigen::Vector3d(std::cos(f.azimuth), std::sin(f.azimuth), 0.0);
+  f.target_com = Eigen::Vector3d(c0.x() + disp.x(), c0.y() + disp.y(), cfg.polarOrigin().z() + disp.z() + cfg.standingHeight());
+  f.h_total = std::hypot(disp.x(), disp.y());
+  f.in_place = f.h_total < kPureTwistDistance;
+  f.sideways_weight = sidewaysWeight(f.azimuth, target.yaw_rad);
+  return f;
+}
+
+CandidateCore solveCandidateCore(const TargetFrame& frame, const PlannerConfig& cfg, const Candidate& cand) {
   const ActionRanges& ranges = cfg.ranges;
   CandidateCore core;
   PlannedJump& plan = core.plan;
   const Eigen::Vector3d o = cfg.polarOrigin();
   const Eigen::Vector3d& c0 = cfg.start_com;
   const double hs = cfg.standingHeight();
-  const Eigen::Vector3d& disp = target.displacement;
-  plan.azimuth_rad = jumpPlaneAzimuth(disp);
-  const Eigen::Vector3d u(std::cos(plan.azimuth_rad), std::sin(plan.azimuth_rad), 0.0);
-  plan.target_com = Eigen::Vector3d(c0.x() + disp.x(), c0.y() + disp.y(), o.z() + disp.z() + hs);
-  const double h_total = std::hypot(disp.x(), disp.y());
-  const bool in_place = h_total < kPureTwistDistance;
+  plan.azimuth_rad = frame.azimuth;
+  const Eigen::Vector3d& u = frame.u;
+  plan.target_com = frame.target_com;
+  const double h_total = frame.h_total;
+  const bool in_place = frame.in_place;
   const double lift_off_z = o.z() + hs + cand.rise;
-  const double sideways_weight = sidewaysWeight(plan.azimuth_rad, target.yaw_rad);
+  const double sideways_weight = frame.sideways_weight;
 
   const ParameterRange& rv_range = ranges[P::kLiftOffSpeed];
   const ParameterRange& d_range = ranges[P::kExplosiveDistance];
@@ -242,6 +266,11 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
   // Flight time to the target height, for the yaw split.
   const BallisticFlight flight(FlightState{c_e, m.velocity}, cfg.gravity);
   core.t_flight = flight.landingTime(plan.target_com.z());
+  // Computed here once for all the yaw splits (planCandidate checks it).
+  if (!in_place) {
+    core.lowest_elevation =
+        std::atan2(plan.target_com.z() - c_e.z(), (plan.target_com - c_e).head<2>().norm());
+  }
   core.c_e = c_e;
   core.m = m;
   core.speed = speed;
@@ -304,7 +333,7 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
   };
   if (!m.ok) fail(PlanLimit::kActionRange, P::kVelocityElevation, m.problem);
   if (!in_place) {
-    const double lowest = std::atan2(plan.target_com.z() - c_e.z(), (plan.target_com - c_e).head<2>().norm());
+    const double lowest = core.lowest_elevation;
     if (ranges[P::kVelocityElevation].max <= lowest && failQuietly(PlanLimit::kActionRange, P::kVelocityElevation)) {
       std::ostringstream msg;
       msg << "the target needs a lift-off velocity elevation above " << lowest
@@ -611,6 +640,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   }
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
   const Eigen::Vector3d polar_origin = config.polarOrigin();
+  const TargetFrame frame = targetFrame(target, config);
   // The first rejected candidate of each kind, in case planJump returns it.
   std::optional<Rejection> first_failure;  // the action ranges
   std::optional<Rejection> leg_failure;
@@ -643,7 +673,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
           core = placement_core;
           core->plan.action.thrust_duration_s = cand.thrust_duration;
         }
-        if (!core) placement_core = core = solveCandidateCore(target, config, cand);
+        if (!core) placement_core = core = solveCandidateCore(frame, config, cand);
         PlannedJump plan = planCandidate(target, config, *core, cand, false);
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
