@@ -228,8 +228,8 @@ CandidateCore solveCandidateCore(const TargetFrame& frame, const PlannerConfig& 
   // Fixed point on the lift-off offset: the member depends on its lift-off
   // point, and the lift-off point on the member only through the offset rule,
   // i.e. through one number a = F(a). The ballistic solution below is exact
-  // either way. The secant steps of solveFixedPoint1D need 4 to 6 members (1
-  // where the offset is fixed) where plain iteration on (theta, speed, d)
+  // either way. The secant steps of solveFixedPoint1D mostly need 4 to 6 members (1
+  // where a fixed offset is not raised) where plain iteration on (theta, speed, d)
   // needed 12 to 18; the plans agree with it to 1e-12. The member of the last
   // evaluation (at the solution) is kept. The first guess is plain iteration's:
   // elevation pi/4, speed 0, d at its minimum.
