@@ -4,6 +4,7 @@
 // with a reason.
 #include "method/planner.h"
 
+#include "method/fixed_point.h"
 #include "method/orientation_trajectory.h"
 
 #include <gtest/gtest.h>
@@ -59,6 +60,65 @@ std::vector<Eigen::Vector3d> sweepGrid() {
     }
   }
   return grid;
+}
+
+// The planner's lift-off offset solver (method/fixed_point.h) on maps with a
+// known fixed point.
+TEST(PlannerFixedPoint, SecantConvergesToTheFixedPointOfAContraction) {
+  // cos maps [0, 1] into itself with |cos'| <= sin(1) < 1; its fixed point is
+  // the Dottie number. Plain iteration needs about 75 rounds to 1e-13.
+  constexpr double kDottie = 0.739085133215160641655;
+  int calls = 0;
+  auto f = [&](double x) {
+    ++calls;
+    return std::cos(x);
+  };
+  for (double x0 : {0.0, 0.5, 1.0}) {
+    calls = 0;
+    const FixedPoint1D r = solveFixedPoint1D(f, x0, 0.0, 1.0, 1e-13, 200);
+    EXPECT_TRUE(r.converged) << x0;
+    EXPECT_NEAR(r.x, kDottie, 1e-14) << x0;
+    EXPECT_EQ(r.fx, std::cos(r.x));
+    EXPECT_EQ(r.evaluations, calls);
+    EXPECT_LE(r.evaluations, 10) << x0;
+    EXPECT_EQ(r.fallbacks, 0) << x0;
+  }
+  // A map that is already constant: one call.
+  const FixedPoint1D c = solveFixedPoint1D([](double) { return 0.25; }, 0.25, 0.0, 1.0, 1e-13, 200);
+  EXPECT_TRUE(c.converged);
+  EXPECT_EQ(c.evaluations, 1);
+  EXPECT_EQ(c.x, 0.25);
+}
+
+TEST(PlannerFixedPoint, FallsBackToPlainStepsWhereTheSecantStepFails) {
+  // A kinked contraction, f(x) = 0.5 - 0.8 |x - 0.3| with fixed point 37/90:
+  // from x0 = 1 a secant step through points on either side of the kink
+  // overshoots to the bound and |g| grows; the solver then takes a halved plain
+  // step (g changed its sign) and still converges.
+  auto kinked = [](double x) { return 0.5 - 0.8 * std::abs(x - 0.3); };
+  const FixedPoint1D r = solveFixedPoint1D(kinked, 1.0, -1.0, 1.0, 1e-13, 200);
+  EXPECT_TRUE(r.converged);
+  EXPECT_NEAR(r.x, 37.0 / 90.0, 1e-13);
+  EXPECT_GE(r.fallbacks, 1);
+  // Where g = f - x does not fall between two iterates (here f(x) = 0.3 + x on
+  // [0, 0.4), then 0.9 - x / 2: g is flat at first) the secant has no root to
+  // go to; the solver takes the plain step, which lands on the fixed point 0.6.
+  const FixedPoint1D s =
+      solveFixedPoint1D([](double x) { return x < 0.4 ? 0.3 + x : 0.9 - 0.5 * x; }, 0.0, 0.0, 1.0, 1e-13, 200);
+  EXPECT_TRUE(s.converged);
+  EXPECT_NEAR(s.x, 0.6, 1e-13);
+  EXPECT_EQ(s.evaluations, 3);
+  EXPECT_EQ(s.fallbacks, 1);
+  // A map without a fixed point (a jump across the diagonal) uses up its budget
+  // and says so; a non-finite value stops the solver at once.
+  const FixedPoint1D none =
+      solveFixedPoint1D([](double x) { return x < 0.5 ? 0.6 : 0.4; }, 0.0, 0.0, 1.0, 1e-13, 30);
+  EXPECT_FALSE(none.converged);
+  EXPECT_EQ(none.evaluations, 30);
+  const FixedPoint1D n = solveFixedPoint1D([](double) { return std::nan(""); }, 0.3, 0.0, 1.0, 1e-13, 200);
+  EXPECT_FALSE(n.converged);
+  EXPECT_EQ(n.evaluations, 1);
+  EXPECT_EQ(n.x, 0.3);
 }
 
 TEST(Planner, GridTargetsLandOnTheTargetComWithinANanometre) {

@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <stdexcept>
 
+#include "method/fixed_point.h"
 #include "method/force_distribution.h"
 #include "method/orientation_trajectory.h"
 
@@ -15,6 +16,10 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRangeTolerance = 1e-12;  // a value this far outside its range is clamped, not rejected
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The lift-off offset's fixed point is solved to |F(a) - a| <= this times the
+// horizontal target distance: relative, because near-vertical jumps (a few
+// microns) are as sensitive to the offset as wide ones are to a fixed 1e-13 m.
+constexpr double kOffsetTolerance = 1e-13;
 
 using P = ActionParameter;
 
@@ -146,24 +151,48 @@ struct CandidateCore {
   double d_needed = 0.0;            // explosive distance the acceleration cap needs
   double rv_cap = 0.0;
   std::optional<double> t_flight;  // lift-off to the target height
+  double lowest_elevation = 0.0;   // of a lift-off velocity from c_e that reaches the target (not in place)
   bool in_place = false;
 };
 
-CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& cfg, const Candidate& cand) {
+// What every candidate of a target shares: its jump plane, target CoM and
+// sideways weight, computed once per planJump rather than per candidate.
+struct TargetFrame {
+  double azimuth = 0.0;
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();  // horizontal unit vector of the jump plane
+  Eigen::Vector3d target_com = Eigen::Vector3d::Zero();
+  double h_total = 0.0;  // horizontal target distance
+  bool in_place = false;
+  double sideways_weight = 0.0;
+};
+
+TargetFrame targetFrame(const JumpTarget& target, const PlannerConfig& cfg) {
+  TargetFrame f;
+  const Eigen::Vector3d& c0 = cfg.start_com;
+  const Eigen::Vector3d& disp = target.displacement;
+  f.azimuth = jumpPlaneAzimuth(disp);
+  f.u = Eigen::Vector3d(std::cos(f.azimuth), std::sin(f.azimuth), 0.0);
+  f.target_com = Eigen::Vector3d(c0.x() + disp.x(), c0.y() + disp.y(), cfg.polarOrigin().z() + disp.z() + cfg.standingHeight());
+  f.h_total = std::hypot(disp.x(), disp.y());
+  f.in_place = f.h_total < kPureTwistDistance;
+  f.sideways_weight = sidewaysWeight(f.azimuth, target.yaw_rad);
+  return f;
+}
+
+CandidateCore solveCandidateCore(const TargetFrame& frame, const PlannerConfig& cfg, const Candidate& cand) {
   const ActionRanges& ranges = cfg.ranges;
   CandidateCore core;
   PlannedJump& plan = core.plan;
   const Eigen::Vector3d o = cfg.polarOrigin();
   const Eigen::Vector3d& c0 = cfg.start_com;
   const double hs = cfg.standingHeight();
-  const Eigen::Vector3d& disp = target.displacement;
-  plan.azimuth_rad = jumpPlaneAzimuth(disp);
-  const Eigen::Vector3d u(std::cos(plan.azimuth_rad), std::sin(plan.azimuth_rad), 0.0);
-  plan.target_com = Eigen::Vector3d(c0.x() + disp.x(), c0.y() + disp.y(), o.z() + disp.z() + hs);
-  const double h_total = std::hypot(disp.x(), disp.y());
-  const bool in_place = h_total < kPureTwistDistance;
+  plan.azimuth_rad = frame.azimuth;
+  const Eigen::Vector3d& u = frame.u;
+  plan.target_com = frame.target_com;
+  const double h_total = frame.h_total;
+  const bool in_place = frame.in_place;
   const double lift_off_z = o.z() + hs + cand.rise;
-  const double sideways_weight = sidewaysWeight(plan.azimuth_rad, target.yaw_rad);
+  const double sideways_weight = frame.sideways_weight;
 
   const ParameterRange& rv_range = ranges[P::kLiftOffSpeed];
   const ParameterRange& d_range = ranges[P::kExplosiveDistance];
@@ -181,48 +210,45 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
     s.d = std::max(d_range.min, s.d_needed);
     return s;
   };
-  // Lift-off point for the current guess of the lift-off velocity v (its
-  // elevation theta, its speed) and explosive distance d.
-  auto liftOffPoint = [&](double theta, double speed, double d) {
-    double ahead = 0.0;
-    if (!in_place) {
-      // A still start: the Bezier lift-off is T/3 v_b ahead of the start CoM, so
-      // P2 is above P0 and the CoM starts without horizontal acceleration.
-      const double still = (cand.thrust_duration / 3.0 * splitSpeed(speed).r_v + d) * std::cos(theta);
-      ahead = std::min(std::isnan(cand.ahead) ? still : std::max(cand.ahead, d * std::cos(theta)), 0.5 * h_total);
-    }
+  // The rule's lift-off offset along the jump plane for a lift-off velocity of
+  // elevation cosine cos_theta and speed `speed`, and explosive distance d.
+  auto aheadFor = [&](double cos_theta, double speed, double d) {
+    if (in_place) return 0.0;
+    // A still start: the Bezier lift-off is T/3 v_b ahead of the start CoM, so
+    // P2 is above P0 and the CoM starts without horizontal acceleration.
+    const double still = (cand.thrust_duration / 3.0 * splitSpeed(speed).r_v + d) * cos_theta;
+    return std::min(std::isnan(cand.ahead) ? still : std::max(cand.ahead, d * cos_theta), 0.5 * h_total);
+  };
+  auto liftOffPoint = [&](double ahead) {
     Eigen::Vector3d c = c0 + ahead * u;
     c.z() = lift_off_z;
     return c;
   };
 
-  // Fixed point on the lift-off velocity and d: the lift-off point depends on
-  // them only through the offset rule; the ballistic solution below is exact
-  // either way.
-  double theta = in_place ? kPi / 2.0 : kPi / 4.0;
-  double guess_speed = 0.0;
-  double d = d_range.min;
-  // Plain iteration first (the map is a strong contraction for most targets:
-  // a few rounds), damped by half after 20 rounds for the ones that oscillate.
-  for (int iter = 0; iter < 200; ++iter) {
-    const Member m = chooseMember(liftOffPoint(theta, guess_speed, d), plan.target_com, in_place, sideways_weight, cfg);
-    if (!m.ok) break;
-    const double theta_new = std::atan2(m.velocity.z(), m.velocity.dot(u));
-    const double speed_new = m.velocity.norm();
-    const double d_new = std::min(splitSpeed(speed_new).d, d_range.max);
-    const bool done = std::abs(theta_new - theta) < 1e-13 && std::abs(d_new - d) < 1e-13 &&
-                      std::abs(speed_new - guess_speed) < 1e-13;
-    const double keep = iter < 20 ? 0.0 : 0.5;
-    theta = keep * theta + (1.0 - keep) * theta_new;
-    guess_speed = keep * guess_speed + (1.0 - keep) * speed_new;
-    d = keep * d + (1.0 - keep) * d_new;
-    if (done) break;
-  }
-  const Eigen::Vector3d c_e = liftOffPoint(theta, guess_speed, d);
-  const Member m = chooseMember(c_e, plan.target_com, in_place, sideways_weight, cfg);
+  // Fixed point on the lift-off offset: the member depends on its lift-off
+  // point, and the lift-off point on the member only through the offset rule,
+  // i.e. through one number a = F(a). The ballistic solution below is exact
+  // either way. The secant steps of solveFixedPoint1D mostly need 4 to 6 members (1
+  // where a fixed offset is not raised) where plain iteration on (theta, speed, d)
+  // needed 12 to 18; the plans agree with it to 1e-12. The member of the last
+  // evaluation (at the solution) is kept. The first guess is plain iteration's:
+  // elevation pi/4, speed 0, d at its minimum.
+  Member m;
+  auto offsetMap = [&](double ahead) {
+    m = chooseMember(liftOffPoint(ahead), plan.target_com, in_place, sideways_weight, cfg);
+    if (!m.ok) return kNaN;  // stops the solver
+    const double speed = m.velocity.norm();
+    const double d = std::min(splitSpeed(speed).d, d_range.max);
+    return aheadFor(m.velocity.dot(u) / speed, speed, d);  // cos(theta) = v_h / |v|
+  };
+  const double first_guess = aheadFor(std::cos(kPi / 4.0), 0.0, d_range.min);
+  const FixedPoint1D fixed =
+      in_place ? FixedPoint1D{0.0, offsetMap(0.0), 1, 0, true}  // the offset is 0
+               : solveFixedPoint1D(offsetMap, first_guess, 0.0, 0.5 * h_total, kOffsetTolerance * h_total, 200);
+  const Eigen::Vector3d c_e = liftOffPoint(fixed.x);
   const double speed = m.velocity.norm();
   const Split split = splitSpeed(speed);
-  d = std::min(d, d_range.max);
+  const double d = std::min(split.d, d_range.max);
   const Eigen::Vector3d v_hat = m.velocity / speed;
   const Eigen::Vector3d c_b = c_e - d * v_hat;
   const Eigen::Vector3d rel = c_b - o;
@@ -240,6 +266,11 @@ CandidateCore solveCandidateCore(const JumpTarget& target, const PlannerConfig& 
   // Flight time to the target height, for the yaw split.
   const BallisticFlight flight(FlightState{c_e, m.velocity}, cfg.gravity);
   core.t_flight = flight.landingTime(plan.target_com.z());
+  // Computed here once for all the yaw splits (planCandidate checks it).
+  if (!in_place) {
+    core.lowest_elevation =
+        std::atan2(plan.target_com.z() - c_e.z(), (plan.target_com - c_e).head<2>().norm());
+  }
   core.c_e = c_e;
   core.m = m;
   core.speed = speed;
@@ -302,7 +333,7 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
   };
   if (!m.ok) fail(PlanLimit::kActionRange, P::kVelocityElevation, m.problem);
   if (!in_place) {
-    const double lowest = std::atan2(plan.target_com.z() - c_e.z(), (plan.target_com - c_e).head<2>().norm());
+    const double lowest = core.lowest_elevation;
     if (ranges[P::kVelocityElevation].max <= lowest && failQuietly(PlanLimit::kActionRange, P::kVelocityElevation)) {
       std::ostringstream msg;
       msg << "the target needs a lift-off velocity elevation above " << lowest
@@ -609,6 +640,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   }
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
   const Eigen::Vector3d polar_origin = config.polarOrigin();
+  const TargetFrame frame = targetFrame(target, config);
   // The first rejected candidate of each kind, in case planJump returns it.
   std::optional<Rejection> first_failure;  // the action ranges
   std::optional<Rejection> leg_failure;
@@ -641,7 +673,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
           core = placement_core;
           core->plan.action.thrust_duration_s = cand.thrust_duration;
         }
-        if (!core) placement_core = core = solveCandidateCore(target, config, cand);
+        if (!core) placement_core = core = solveCandidateCore(frame, config, cand);
         PlannedJump plan = planCandidate(target, config, *core, cand, false);
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
