@@ -88,11 +88,13 @@ TEST(JumpRuns, Go1LateralJumpLandsOnItsFeet) {
   // 0.3 m to the left. The legs swing across a sideways push and the whole body
   // leaves the ground rolling: with the least-speed elevation (0.68 rad) it rolled
   // onto a thigh. The steeper sideways lift-off (1.35 rad) and the momentum
-  // feedback land it 5.8 cm off (tolerance 10 cm), rolled 18.5 deg at touchdown.
+  // feedback land it rolled 18.5 deg at touchdown; with the file's 2 s episode it
+  // comes to rest standing 3.1 cm off (tolerance 10 cm).
   const nlohmann::json jump = onlyJump("scenarios/go1/lateral.xml", "jump_lateral");
   ASSERT_FALSE(jump.is_null());
   EXPECT_EQ(jump["status"], "ok") << jump["failure_reason"];
   EXPECT_LT(jump["error_xy"].get<double>(), 0.10);
+  EXPECT_TRUE(jump["ended_standing"].get<bool>());
   EXPECT_NEAR(jump["metrics"]["action_velocity_elevation"].get<double>(), 1.35, 1e-6);
 }
 
