@@ -24,9 +24,10 @@
 // with f = G^+ (m (a - g), 0): a = 0 for feedforward "gravity" (the paper's), a = a_ref
 // for "dynamic". With momentum_gain g > 0, R_des and w_ref also carry a turn at
 //   g ((w_ref - I^-1 L) - tilt / T_f)           (whole-body momentum, host ABI 1.2)
-// that drives the touchdown attitude error the momentum predicts to zero. After the plan has ended the reference stays at its end point (no
-// velocity) until lift-off; without lift-off within kLiftOffWait the jump is abandoned
-// and the controller lands (stance) in place.
+// that drives the touchdown attitude error the momentum predicts to zero. After the
+// plan has ended the reference stays at its end point (no velocity) until lift-off;
+// without lift-off within kLiftOffWait the jump is abandoned and the controller lands
+// (stance) in place.
 //
 // The descent's landing pose is the stance's feet placed under a level trunk (IK
 // against the trunk's measured roll and pitch), so that a trunk that rotated in the
