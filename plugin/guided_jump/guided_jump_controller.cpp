@@ -28,7 +28,7 @@ std::array<pronk_param_decl, kParamCount> makeParamDecls() {
   d[kHoldParamCount + 1] = {sizeof(pronk_param_decl), "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
                             "standing time before the thrust"};
   d[kHoldParamCount + 2] = {sizeof(pronk_param_decl), "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "gravity", "",
-                            "thrust feed-forward force: gravity (m g, the paper's) or dynamic (m (a_ref + g))"};
+                            kFeedforwardDoc};
   d[kHoldParamCount + 3] = {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
                             "Kp is divided by this from lift-off to touchdown"};
   d[kHoldParamCount + 4] = {sizeof(pronk_param_decl), "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
@@ -48,14 +48,7 @@ JumpSettings readJumpSettings(const ParamReader& read) {
   s.hold = readHoldSettings(read);
   s.action = read.vector("action");
   s.start_delay = read.real("start_delay");
-  const std::string ff = read.string("feedforward");
-  if (ff == "gravity") {
-    s.feedforward = Feedforward::kGravity;
-  } else if (ff == "dynamic") {
-    s.feedforward = Feedforward::kDynamic;
-  } else {
-    throw InvalidArgument("parameter 'feedforward': '" + ff + "' is neither 'gravity' nor 'dynamic'");
-  }
+  s.feedforward = feedforwardFromName(read.string("feedforward"));
   s.flight_kp_division = read.real("flight_kp_division");
   s.landing_height = read.real("landing_height");
   s.momentum_gain = read.real("momentum_gain");

@@ -67,7 +67,7 @@ const std::vector<pronk_param_decl>& paramDecls() {
         {sizeof(pronk_param_decl), "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
          "standing time before the thrust"},
         {sizeof(pronk_param_decl), "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "dynamic", "",
-         "thrust feed-forward force: gravity (m g, the paper's) or dynamic (m (a_ref + g))"},
+         kFeedforwardDoc},
         {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
          "Kp is divided by this from lift-off to touchdown"},
         {sizeof(pronk_param_decl), "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
@@ -110,14 +110,7 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   EnvironmentSettings s;
   s.jump.hold = readHoldSettings(read);
   s.jump.start_delay = read.real("start_delay");
-  const std::string ff = read.string("feedforward");
-  if (ff == "gravity") {
-    s.jump.feedforward = Feedforward::kGravity;
-  } else if (ff == "dynamic") {
-    s.jump.feedforward = Feedforward::kDynamic;
-  } else {
-    throw InvalidArgument("parameter 'feedforward': '" + ff + "' is neither 'gravity' nor 'dynamic'");
-  }
+  s.jump.feedforward = feedforwardFromName(read.string("feedforward"));
   s.jump.flight_kp_division = read.real("flight_kp_division");
   s.jump.momentum_gain = read.real("momentum_gain");
   s.duration = read.real("duration");

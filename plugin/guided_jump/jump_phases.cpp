@@ -183,15 +183,30 @@ void JumpController::startThrust(const pronk_robot_state& s) {
   enter(JumpPhase::kThrust, s.time, detail);
 }
 
-std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host) {
+Feedforward feedforwardFromName(const std::string& name) {
+  if (name == "gravity") return Feedforward::kGravity;
+  if (name == "dynamic") return Feedforward::kDynamic;
+  if (name == "dynamic_angular") return Feedforward::kDynamicAngular;
+  throw InvalidArgument("parameter 'feedforward': '" + name + "' is none of gravity, dynamic, dynamic_angular");
+}
+
+std::optional<CentroidalMomentum> centroidalMomentum(const pronk_host_api* host) {
   if (host->struct_size < offsetof(pronk_host_api, centroidal_momentum) + sizeof(host->centroidal_momentum) ||
       !host->centroidal_momentum) {
     return std::nullopt;
   }
-  Eigen::Vector3d L;
+  CentroidalMomentum m;
   Eigen::Matrix<double, 3, 3, Eigen::RowMajor> I;
-  if (host->centroidal_momentum(host->host, L.data(), I.data()) != PRONK_OK) return std::nullopt;
-  const Eigen::Vector3d w = I.ldlt().solve(L);
+  if (host->centroidal_momentum(host->host, m.angular.data(), I.data()) != PRONK_OK) return std::nullopt;
+  m.inertia = I;
+  if (!m.angular.allFinite() || !m.inertia.allFinite()) return std::nullopt;
+  return m;
+}
+
+std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host) {
+  const std::optional<CentroidalMomentum> m = centroidalMomentum(host);
+  if (!m) return std::nullopt;
+  const Eigen::Vector3d w = m->inertia.ldlt().solve(m->angular);
   return w.allFinite() ? std::optional<Eigen::Vector3d>(w) : std::nullopt;
 }
 
@@ -258,8 +273,19 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
     qd_ref_.segment<3>(3 * f) =
         (J.transpose() * J + lambda * lambda * Eigen::Matrix3d::Identity()).lu().solve(J.transpose() * v_rel);
   }
-  const Eigen::Vector3d acc = settings_.feedforward == Feedforward::kDynamic ? a_ref : Eigen::Vector3d::Zero();
-  jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, torque);
+  // Dynamic feed-forward: the planned CoM acceleration; dynamic_angular adds the
+  // orientation plan's rate of angular momentum d(I w)/dt = I alpha + w x I w, with
+  // I the whole body's locked-joint inertia now (none from a host before ABI 1.2).
+  Eigen::Vector3d acc = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+  if (settings_.feedforward != Feedforward::kGravity && running) acc = a_ref;
+  if (settings_.feedforward == Feedforward::kDynamicAngular && running) {
+    if (const std::optional<CentroidalMomentum> m = centroidalMomentum(host_)) {
+      const Eigen::Vector3d w_plan = heading_ * orientation_->angularVelocityWorld(tc);
+      const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
+      moment = m->inertia * alpha_plan + w_plan.cross(m->inertia * w_plan);
+    }
+  }
+  jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, moment, torque);
 }
 
 Eigen::Vector2d JumpController::landingStop(const Eigen::Vector3d& v) {
@@ -362,11 +388,11 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
 
 void JumpController::jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref,
                                   const Eigen::VectorXd& qd_ref, bool gravity, const Eigen::Vector3d& com_acceleration,
-                                  double* torque) {
+                                  const Eigen::Vector3d& moment, double* torque) {
   Eigen::Map<const Eigen::VectorXd> q(s.q, n_), qd(s.qd, n_);
   Eigen::Map<Eigen::VectorXd> tau(torque, n_);
   tau = kp * (q_ref - q) + settings_.hold.kd * (qd_ref - qd);
-  if (gravity) applyBodyWrench(s, mass_ * (com_acceleration - gravity_), Eigen::Vector3d::Zero(), tau);
+  if (gravity) applyBodyWrench(s, mass_ * (com_acceleration - gravity_), moment, tau);
   saturate(tau);
 }
 
@@ -400,7 +426,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       for (int f = 0; f < feet_; ++f) down += s.foot_in_contact[f] ? 1 : 0;
       jointTorques(s, kp_low + a * (settings_.hold.kp - kp_low), q_ref_, qd_ref_,
                    settings_.hold.gravity_compensation && all_down_seen_ && (down >= 3 || down == feet_),
-                   Eigen::Vector3d::Zero(), torque);
+                   Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), torque);
       return;
     }
     landingTorques(s, kp_low + a * (settings_.hold.kp - kp_low), torque);
@@ -491,7 +517,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);
     qd_ref_.setZero();
-    jointTorques(s, kp_flight, q_ref_, qd_ref_, false, Eigen::Vector3d::Zero(), torque);
+    jointTorques(s, kp_flight, q_ref_, qd_ref_, false, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), torque);
   }
 }
 

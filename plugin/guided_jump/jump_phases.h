@@ -21,8 +21,10 @@
 //   q_ref     = IK(foot_des)                    Newton steps on the host's leg kinematics
 //   qd_ref    = J(q_ref)^-1 R_des^T (-(v_ref + w_ref x (p_foot - trunk_des)))
 //   tau       = Kp (q_ref - q) + Kd (qd_ref - qd) - sum_contact J_i^T f_i, clamped
-// with f = G^+ (m (a - g), 0): a = 0 for feedforward "gravity" (the paper's), a = a_ref
-// for "dynamic". With momentum_gain g > 0, R_des and w_ref also carry a turn at
+// with f = G^+ (m (a - g), M): a = 0, M = 0 for feedforward "gravity" (the paper's);
+// a = a_ref, M = 0 for "dynamic"; for "dynamic_angular" also M = I alpha_plan +
+// w_plan x I w_plan, the orientation plan's rate of angular momentum (I the whole
+// body's locked-joint inertia now, host ABI 1.2). With momentum_gain g > 0, R_des and w_ref also carry a turn at
 //   g ((w_ref - I^-1 L) - tilt / T_f)           (whole-body momentum, host ABI 1.2)
 // that drives the touchdown attitude error the momentum predicts to zero. After the
 // plan has ended the reference stays at its end point (no velocity) until lift-off;
@@ -51,7 +53,14 @@
 
 namespace pronk::guided_jump {
 
-enum class Feedforward { kGravity, kDynamic };
+enum class Feedforward { kGravity, kDynamic, kDynamicAngular };
+// The `feedforward` parameter's values and their meaning (for the declarations).
+inline constexpr const char* kFeedforwardDoc =
+    "thrust feed-forward: gravity (m g, the paper's), dynamic (m (a_ref + g)) or dynamic_angular (dynamic and the "
+    "orientation plan's rate of angular momentum)";
+// "gravity", "dynamic", "dynamic_angular"; throws InvalidArgument naming the
+// parameter for any other name.
+Feedforward feedforwardFromName(const std::string& name);
 
 struct JumpSettings {
   HoldSettings hold;                 // gains, stance (= landing pose), gravity compensation
@@ -91,6 +100,15 @@ struct StartFrame {
   }
 };
 StartFrame takeOffFrame(const pronk_host_api* host, const pronk_robot_state& state);
+
+// The whole body's angular momentum L about its CoM and its locked-joint
+// rotational inertia I about it (world), from the host (ABI 1.2); nullopt from an
+// older host or a non-finite answer.
+struct CentroidalMomentum {
+  Eigen::Vector3d angular = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+std::optional<CentroidalMomentum> centroidalMomentum(const pronk_host_api* host);
 
 // The whole body's average angular velocity I^-1 L about its CoM (world) at the
 // current tick, from the host (ABI 1.2); nullopt from an older host. In flight it
@@ -140,7 +158,8 @@ class JumpController {
   void landingReference(const pronk_robot_state& s);
   void thrustTorques(const pronk_robot_state& s, double t, double* torque);
   void jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref, const Eigen::VectorXd& qd_ref,
-                    bool gravity, const Eigen::Vector3d& com_acceleration, double* torque);
+                    bool gravity, const Eigen::Vector3d& com_acceleration, const Eigen::Vector3d& moment,
+                    double* torque);
   // Newton steps on the host's leg kinematics from q_ref_'s current values.
   Eigen::Vector3d legIk(int foot, const Eigen::Vector3d& foot_base);
   Eigen::Matrix3d legJacobian(int foot, const Eigen::VectorXd& q);

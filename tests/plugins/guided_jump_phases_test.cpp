@@ -88,7 +88,7 @@ TEST_F(GuidedJumpPhases, UnknownFeedforwardIsRefused) {
     make({{"feedforward", "magic", {}}});
     FAIL() << "no error";
   } catch (const std::exception& e) {
-    EXPECT_THAT(e.what(), HasSubstr("neither 'gravity' nor 'dynamic'"));
+    EXPECT_THAT(e.what(), HasSubstr("'magic' is none of gravity, dynamic, dynamic_angular"));
   }
 }
 
@@ -178,6 +178,40 @@ TEST_F(GuidedJumpPhases, NoLiftOffAbandonsTheJump) {
   ASSERT_EQ(eventNames().back(), "phase:landing");
   EXPECT_THAT(robot_.events.back().detail, HasSubstr("no lift-off"));
   EXPECT_NEAR(robot_.events.back().time, 0.45 + 0.15, 2e-3);
+}
+
+// The dynamic_angular feed-forward puts the orientation plan's rate of angular
+// momentum I alpha + w x I w on the stance feet (besides m (a - g)): its share of
+// the torques vanishes without a planned rotation and scales with the inertia the
+// host reports. The plain dynamic one has no such share.
+double g_inertia_scale = 0.0;
+
+TEST_F(GuidedJumpPhases, DynamicFeedforwardCarriesThePlannedRateOfAngularMomentum) {
+  robot_.q() = {0.1, 0.7, -1.4, -0.1, 0.8, -1.5, 0.0, 0.9, -1.6, 0.05, 0.75, -1.5};
+  // A jump turning 0.3 rad during the thrust and lifting off at 1 rad/s of yaw.
+  const char* const turning = "0.45 0.38 1.5708 1.6 1.5708 1 0 0 0 0.3 0 0 1.0";
+  auto thrustTorques = [&](const char* action, double inertia_scale, const char* feedforward = "dynamic_angular") {
+    g_inertia_scale = inertia_scale;
+    api_.centroidal_momentum = [](void*, double L[3], double I[9]) {
+      const double inertia[9] = {0.05, 0.0, 0.0, 0.0, 0.2, 0.01, 0.0, 0.01, 0.25};
+      for (int i = 0; i < 3; ++i) L[i] = 0.0;
+      for (int i = 0; i < 9; ++i) I[i] = g_inertia_scale * inertia[i];
+      return PRONK_OK;
+    };
+    auto jump = make({{"action", action, {}}, {"feedforward", feedforward, {}}, {"start_delay", "0", {}}});
+    robot_.time = 0.0;
+    jump->reset(robot_.state());
+    torques(*jump, robot_.state());  // the thrust starts
+    robot_.time = 0.1;               // the yaw Bezier accelerates here
+    return torques(*jump, robot_.state());
+  };
+  const Eigen::VectorXd none = thrustTorques(turning, 0.0);
+  const Eigen::VectorXd once = thrustTorques(turning, 1.0) - none;
+  const Eigen::VectorXd twice = thrustTorques(turning, 2.0) - none;
+  EXPECT_GT(once.norm(), 1e-3);
+  EXPECT_TRUE(twice.isApprox(2.0 * once, 1e-9));
+  EXPECT_LT((thrustTorques(kVerticalAction, 1.0) - thrustTorques(kVerticalAction, 0.0)).norm(), 1e-12);
+  EXPECT_LT((thrustTorques(turning, 1.0, "dynamic") - thrustTorques(turning, 0.0, "dynamic")).norm(), 1e-12);
 }
 
 }  // namespace
