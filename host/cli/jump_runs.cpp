@@ -2,6 +2,7 @@
 // per target (or per sweep case), a table of landings, results files and videos.
 #include "jump_runs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -223,6 +224,28 @@ render::SceneMarkers jumpMarkers(const JumpReport& r, const World& world) {
   return m;
 }
 
+// --duration sets the episode length, which the environment's `duration`
+// parameter owns in a jump run; an environment without one refuses the flag.
+std::vector<ParamSetting> withDurationOption(std::vector<ParamSetting> params, const RunOptions& options,
+                                             const pronk_factory& factory) {
+  if (options.duration <= 0) return params;
+  bool declared = false;
+  for (int32_t i = 0; i < factory.param_count; ++i) declared = declared || std::string(factory.params[i].name) == "duration";
+  if (!declared) {
+    throw Error(std::string("--duration: the environment '") + factory.name +
+                     "' has no 'duration' parameter, so the episode length cannot be set");
+  }
+  char value[32];
+  std::snprintf(value, sizeof value, "%.17g", options.duration);
+  const auto same = std::find_if(params.begin(), params.end(), [](const ParamSetting& p) { return p.name == "duration"; });
+  if (same != params.end()) {
+    same->value = value;
+  } else {
+    params.push_back({"duration", value, SourceLocation{"--duration", 0}});
+  }
+  return params;
+}
+
 }  // namespace
 
 bool runsJumps(const Scenario& scenario, const RunOptions& options) {
@@ -241,7 +264,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   loadPlugins(registry, common.plugin_paths, &as_controller);
   const pronk_factory& factory = findEnvironment(spec, registry);
   const std::string origin = registry.libraryOf(&factory)->path();
-  const ResolvedParams params = resolveParams(factory, spec.params, spec.where);
+  const ResolvedParams params = resolveParams(factory, withDurationOption(spec.params, options, factory), spec.where);
 
   const Policy policy = makePolicy(policy_name, factory);
 

@@ -267,4 +267,17 @@ TEST(JumpRuns, ControllerFlagRunsAControllerInsteadOfTheEnvironment) {
   EXPECT_NE(r.output.find("controller stand"), std::string::npos) << r.output;
 }
 
+TEST(JumpRuns, DurationFlagSetsTheEpisodeLength) {
+  // In a jump run the environment's `duration` parameter owns the episode
+  // length; --duration overrides it (here 0.4 s: the thrust, no lift-off yet,
+  // so the jump misses the file's 5 cm tolerance: exit 4).
+  const std::string out = outDir("jump_duration_flag");
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --duration 0.4 --out " + out);
+  EXPECT_EQ(r.status, 4) << r.output;
+  const nlohmann::json j = results(out);
+  ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
+  EXPECT_NEAR(j[0]["simulated_s"].get<double>(), 0.4, 2e-3);
+  EXPECT_TRUE(j[0]["events"]["lift_off"].is_null()) << j[0]["events"].dump();
+}
+
 }  // namespace

@@ -225,6 +225,50 @@ TEST(Includes, IncludingASectionTwiceIsADuplicate) {
   EXPECT_NE(loadError(top).find("a scenario holds one <sim>"), std::string::npos) << loadError(top);
 }
 
+TEST(Includes, ParamsInsideAnIncludeOverrideTheIncludedEnvironment) {
+  TempTree tree;
+  tree.write("task.xml",
+             "<scenario_part version=\"1\">\n"
+             "<environment name=\"jump\">\n"
+             "<param name=\"duration\" value=\"1.5\"/>\n"
+             "<param name=\"momentum_gain\" value=\"10\"/>\n"
+             "</environment>\n"
+             "</scenario_part>\n");
+  // Through a second level: the outer include's setting wins over the inner one's.
+  tree.write("long_task.xml",
+             "<scenario_part version=\"1\">\n"
+             "<include file=\"task.xml\"><param name=\"duration\" value=\"3\"/></include>\n"
+             "</scenario_part>\n");
+  const fs::path top = tree.write("top.xml", scenarioWith(tinyPlatform() +
+                                                          "<include file=\"long_task.xml\">\n"
+                                                          "  <param name=\"duration\" value=\"2.0\"/>\n"
+                                                          "  <param name=\"feedforward\" value=\"gravity\"/>\n"
+                                                          "</include>\n"));
+  const Scenario s = loadScenario(top.string());
+  ASSERT_TRUE(s.environment);
+  ASSERT_EQ(s.environment->params.size(), 3u);
+  EXPECT_EQ(s.environment->params[0].name, "duration");
+  EXPECT_EQ(s.environment->params[0].value, "2.0");
+  EXPECT_EQ(s.environment->params[0].where.file, top.string());  // errors in it point at the override
+  EXPECT_EQ(s.environment->params[1].name, "momentum_gain");
+  EXPECT_EQ(s.environment->params[1].value, "10");
+  EXPECT_EQ(s.environment->params[2].name, "feedforward");
+  EXPECT_EQ(s.environment->params[2].value, "gravity");
+}
+
+TEST(Includes, ParamsInsideAnIncludeWithoutAnEnvironmentAreRefused) {
+  TempTree tree;
+  tree.write("sim.xml", "<scenario_part version=\"1\">\n<sim duration=\"2\"/>\n</scenario_part>\n");
+  const fs::path top = tree.write(
+      "top.xml", scenarioWith(tinyPlatform() + "<include file=\"sim.xml\"><param name=\"duration\" value=\"2\"/></include>\n"));
+  const std::string message = loadError(top);
+  EXPECT_NE(message.find("<param> in an <include> sets a parameter of the included <environment>, but"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("brings in no <environment>"), std::string::npos) << message;
+  EXPECT_EQ(message.rfind(top.string() + ":", 0), 0u) << message;
+}
+
 TEST(Angles, DegreesAreConvertedToRadians) {
   TempTree tree;
   const fs::path file = tree.write(

@@ -130,7 +130,8 @@ std::string readPluginAttribute(ElementReader& r) {
   return path;
 }
 
-// <param name=".." value=".."/> children, kept as text: the plugin's schema checks them.
+}  // namespace
+
 std::vector<ParamSetting> readParams(ElementReader& r, const SourceFile& file) {
   std::vector<ParamSetting> params;
   const auto kids = r.children({"param"});
@@ -149,8 +150,6 @@ std::vector<ParamSetting> readParams(ElementReader& r, const SourceFile& file) {
   }
   return params;
 }
-
-}  // namespace
 
 ControllerSpec readController(const XMLElement& e, const SourceFile& file) {
   ElementReader r(e, file);

@@ -3,6 +3,7 @@
 // the checks that span several elements.
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <map>
@@ -87,6 +88,8 @@ class Loader {
   void readRoot(const XMLElement& root, SourceFile& file, bool top);
   void include(const XMLElement& element, const SourceFile& file);
   void dispatch(Scenario& scenario);
+  // readEnvironment, then the <param>s of the <include>s that brought it in.
+  EnvironmentSpec readOverriddenEnvironment(const XMLElement& element, const SourceFile& file) const;
   void checkAcrossElements(Scenario& scenario) const;
 
   std::vector<std::unique_ptr<tinyxml2::XMLDocument>> documents_;
@@ -94,6 +97,8 @@ class Loader {
   std::vector<fs::path> include_chain_;        // identities of the files being read
   std::vector<std::string> include_chain_shown_;
   std::vector<Item> items_;                    // top-level elements, includes spliced in
+  // <param>s written inside an <include>, per included <environment>, inner includes first.
+  std::map<const XMLElement*, std::vector<ParamSetting>> environment_overrides_;
   std::string scenario_name_;
   SourceLocation top_where_;
   bool part_ = false;
@@ -153,7 +158,7 @@ void Loader::include(const XMLElement& element, const SourceFile& file) {
   ElementReader r(element, file);
   const std::string relative = r.requiredText("file");
   r.rejectUnknownAttributes();
-  r.children({});
+  const std::vector<ParamSetting> overrides = scenario_file::readParams(r, file);
   const fs::path target = fs::path(relative).is_absolute()
                               ? fs::path(relative).lexically_normal()
                               : (fs::path(file.shown).parent_path() / relative).lexically_normal();
@@ -170,9 +175,37 @@ void Loader::include(const XMLElement& element, const SourceFile& file) {
   const XMLElement& root = open(target, part, r.where());
   include_chain_.push_back(identity);
   include_chain_shown_.push_back(part.shown);
+  const size_t first_item = items_.size();
   readRoot(root, part, false);
   include_chain_.pop_back();
   include_chain_shown_.pop_back();
+  if (overrides.empty()) return;
+  // The <param>s override (or add to) those of the <environment> the included
+  // file brings in, itself or through its own includes.
+  const auto environment = std::find_if(items_.begin() + static_cast<std::ptrdiff_t>(first_item), items_.end(),
+                                        [](const Item& item) { return std::string(item.element->Name()) == "environment"; });
+  if (environment == items_.end()) {
+    r.fail("<param> in an <include> sets a parameter of the included <environment>, but " + part.shown +
+           " brings in no <environment>");
+  }
+  std::vector<ParamSetting>& applied = environment_overrides_[environment->element];
+  applied.insert(applied.end(), overrides.begin(), overrides.end());
+}
+
+EnvironmentSpec Loader::readOverriddenEnvironment(const XMLElement& element, const SourceFile& file) const {
+  EnvironmentSpec env = scenario_file::readEnvironment(element, file);
+  const auto overrides = environment_overrides_.find(&element);
+  if (overrides == environment_overrides_.end()) return env;
+  for (const ParamSetting& setting : overrides->second) {
+    const auto same = std::find_if(env.params.begin(), env.params.end(),
+                                   [&](const ParamSetting& p) { return p.name == setting.name; });
+    if (same != env.params.end()) {
+      *same = setting;
+    } else {
+      env.params.push_back(setting);
+    }
+  }
+  return env;
 }
 
 void Loader::dispatch(Scenario& scenario) {
@@ -189,7 +222,7 @@ void Loader::dispatch(Scenario& scenario) {
     }
     if (name == "platform") scenario.platform = scenario_file::readPlatform(e, f);
     else if (name == "controller") scenario_controller = scenario_file::readController(e, f);
-    else if (name == "environment") scenario.environment = scenario_file::readEnvironment(e, f);
+    else if (name == "environment") scenario.environment = readOverriddenEnvironment(e, f);
     else if (name == "sim") scenario.sim = scenario_file::readSim(e, f);
     else if (name == "terrain") scenario_file::readTerrain(e, f, scenario);
     else if (name == "targets") scenario.targets = scenario_file::readTargets(e, f);
