@@ -28,7 +28,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scenario", run.scenario, "scenario file")->required()->check(CLI::ExistingFile);
   run_cmd->add_option("--out", run.out_dir, "directory for results.json and the trace CSV");
   run_cmd->add_option("--controller", run.controller, "controller to use instead of the scenario's (e.g. stand)");
-  run_cmd->add_option("--duration", run.duration, "episode length in s (default: the scenario's <sim duration>, or in a jump run its <environment>'s duration parameter)")
+  run_cmd->add_option("--duration", run.duration,
+                      "episode length in s (default: the scenario's <sim duration>, or in a jump run its "
+                      "<environment>'s duration parameter)")
       ->check(CLI::PositiveNumber);
   run_cmd->add_option("--video", run.video, "write an H.264 MP4 of the episode (off-screen, OSMesa)");
   run_cmd->add_option("--speed", run.speed, "video playback speed, e.g. 0.25 for slow motion")
