@@ -225,24 +225,13 @@ render::SceneMarkers jumpMarkers(const JumpReport& r, const World& world) {
 }
 
 // --duration sets the episode length, which the environment's `duration`
-// parameter owns in a jump run; an environment without one refuses the flag.
-std::vector<ParamSetting> withDurationOption(std::vector<ParamSetting> params, const RunOptions& options,
-                                             const pronk_factory& factory) {
+// parameter owns in a jump run (resolveParams refuses it, naming the flag, for
+// an environment without one or a value out of its range).
+std::vector<ParamSetting> withDurationOption(std::vector<ParamSetting> params, const RunOptions& options) {
   if (options.duration <= 0) return params;
-  bool declared = false;
-  for (int32_t i = 0; i < factory.param_count; ++i) declared = declared || std::string(factory.params[i].name) == "duration";
-  if (!declared) {
-    throw Error(std::string("--duration: the environment '") + factory.name +
-                     "' has no 'duration' parameter, so the episode length cannot be set");
-  }
   char value[32];
   std::snprintf(value, sizeof value, "%.17g", options.duration);
-  const auto same = std::find_if(params.begin(), params.end(), [](const ParamSetting& p) { return p.name == "duration"; });
-  if (same != params.end()) {
-    same->value = value;
-  } else {
-    params.push_back({"duration", value, SourceLocation{"--duration", 0}});
-  }
+  setParam(params, {"duration", value, SourceLocation{"--duration", 0}});
   return params;
 }
 
@@ -264,7 +253,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   loadPlugins(registry, common.plugin_paths, &as_controller);
   const pronk_factory& factory = findEnvironment(spec, registry);
   const std::string origin = registry.libraryOf(&factory)->path();
-  const ResolvedParams params = resolveParams(factory, withDurationOption(spec.params, options, factory), spec.where);
+  const ResolvedParams params = resolveParams(factory, withDurationOption(spec.params, options), spec.where);
 
   const Policy policy = makePolicy(policy_name, factory);
 

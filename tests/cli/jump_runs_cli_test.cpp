@@ -278,6 +278,12 @@ TEST(JumpRuns, DurationFlagSetsTheEpisodeLength) {
   ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
   EXPECT_NEAR(j[0]["simulated_s"].get<double>(), 0.4, 2e-3);
   EXPECT_TRUE(j[0]["events"]["lift_off"].is_null()) << j[0]["events"].dump();
+  // A value the environment refuses is reported against the flag, not the file.
+  const CommandRun bad = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --duration 100");
+  EXPECT_EQ(bad.status, 3) << bad.output;
+  EXPECT_NE(bad.output.find("--duration: parameter 'duration' of environment 'jump': 100 is out of range"),
+            std::string::npos)
+      << bad.output;
 }
 
 }  // namespace

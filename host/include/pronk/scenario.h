@@ -22,6 +22,9 @@ struct ParamSetting {
   std::string value;
   SourceLocation where;
 };
+// Puts `setting` into `params`: it replaces the setting of the same name (value
+// and location, so that an error in it points where it was set) or is appended.
+void setParam(std::vector<ParamSetting>& params, const ParamSetting& setting);
 
 struct ControllerSpec {
   std::string factory;              // e.g. "guided_jump", or the built-in "stand"

@@ -196,15 +196,7 @@ EnvironmentSpec Loader::readOverriddenEnvironment(const XMLElement& element, con
   EnvironmentSpec env = scenario_file::readEnvironment(element, file);
   const auto overrides = environment_overrides_.find(&element);
   if (overrides == environment_overrides_.end()) return env;
-  for (const ParamSetting& setting : overrides->second) {
-    const auto same = std::find_if(env.params.begin(), env.params.end(),
-                                   [&](const ParamSetting& p) { return p.name == setting.name; });
-    if (same != env.params.end()) {
-      *same = setting;
-    } else {
-      env.params.push_back(setting);
-    }
-  }
+  for (const ParamSetting& setting : overrides->second) setParam(env.params, setting);
   return env;
 }
 
@@ -297,6 +289,16 @@ Scenario Loader::load(const std::string& path) {
 }
 
 }  // namespace
+
+void setParam(std::vector<ParamSetting>& params, const ParamSetting& setting) {
+  const auto same =
+      std::find_if(params.begin(), params.end(), [&](const ParamSetting& p) { return p.name == setting.name; });
+  if (same != params.end()) {
+    *same = setting;
+  } else {
+    params.push_back(setting);
+  }
+}
 
 Scenario loadScenario(const std::string& path) { return Loader().load(path); }
 
