@@ -203,11 +203,14 @@ std::optional<CentroidalMomentum> centroidalMomentum(const pronk_host_api* host)
   return m;
 }
 
+std::optional<Eigen::Vector3d> averageRate(const CentroidalMomentum& m) {
+  const Eigen::Vector3d w = m.inertia.ldlt().solve(m.angular);
+  return w.allFinite() ? std::optional<Eigen::Vector3d>(w) : std::nullopt;
+}
+
 std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host) {
   const std::optional<CentroidalMomentum> m = centroidalMomentum(host);
-  if (!m) return std::nullopt;
-  const Eigen::Vector3d w = m->inertia.ldlt().solve(m->angular);
-  return w.allFinite() ? std::optional<Eigen::Vector3d>(w) : std::nullopt;
+  return m ? averageRate(*m) : std::nullopt;
 }
 
 Eigen::Matrix3d JumpController::legJacobian(int foot, const Eigen::VectorXd& q) {
@@ -243,13 +246,17 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   const Eigen::Vector3d c_ref = origin_ + heading_ * plan_->position(tc);
   const Eigen::Vector3d v_ref = running ? Eigen::Vector3d(heading_ * plan_->velocity(tc)) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d a_ref = running ? Eigen::Vector3d(heading_ * plan_->acceleration(tc)) : Eigen::Vector3d::Zero();
-  Eigen::Vector3d w_ref =
+  const Eigen::Vector3d w_plan =
       running ? Eigen::Vector3d(heading_ * orientation_->angularVelocityWorld(tc)) : Eigen::Vector3d::Zero();
+  const bool angular_feedforward = settings_.feedforward == Feedforward::kDynamicAngular && running;
+  const std::optional<CentroidalMomentum> momentum =
+      settings_.momentum_gain > 0 || angular_feedforward ? centroidalMomentum(host_) : std::nullopt;
+  Eigen::Vector3d w_ref = w_plan;
   // Whole-body momentum: the legs swinging under the trunk carry angular momentum
   // the trunk's attitude does not show; the trunk turns against it so that the
   // whole body's rate I^-1 L follows the plan's rate (the flight keeps L).
-  if (settings_.momentum_gain > 0) {
-    if (const std::optional<Eigen::Vector3d> body = wholeBodyRate(host_)) {
+  if (settings_.momentum_gain > 0 && momentum) {
+    if (const std::optional<Eigen::Vector3d> body = averageRate(*momentum)) {
       const Eigen::Vector3d extra = settings_.momentum_gain * ((w_ref - *body) - momentum_tilt_ / planned_flight_time_);
       momentum_tilt_ += (s.time - last_thrust_time_) * extra;
       w_ref += extra;
@@ -278,12 +285,9 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   // I the whole body's locked-joint inertia now (none from a host before ABI 1.2).
   Eigen::Vector3d acc = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
   if (settings_.feedforward != Feedforward::kGravity && running) acc = a_ref;
-  if (settings_.feedforward == Feedforward::kDynamicAngular && running) {
-    if (const std::optional<CentroidalMomentum> m = centroidalMomentum(host_)) {
-      const Eigen::Vector3d w_plan = heading_ * orientation_->angularVelocityWorld(tc);
-      const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
-      moment = m->inertia * alpha_plan + w_plan.cross(m->inertia * w_plan);
-    }
+  if (angular_feedforward && momentum) {
+    const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
+    moment = momentum->inertia * alpha_plan + w_plan.cross(momentum->inertia * w_plan);
   }
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, moment, torque);
 }

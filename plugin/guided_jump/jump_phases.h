@@ -109,6 +109,8 @@ struct CentroidalMomentum {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
 std::optional<CentroidalMomentum> centroidalMomentum(const pronk_host_api* host);
+// I^-1 L; nullopt when it is not finite.
+std::optional<Eigen::Vector3d> averageRate(const CentroidalMomentum& momentum);
 
 // The whole body's average angular velocity I^-1 L about its CoM (world) at the
 // current tick, from the host (ABI 1.2); nullopt from an older host. In flight it
