@@ -11,7 +11,7 @@
 
 namespace pronk::guided_jump {
 
-const pronk_param_decl kHoldParamDecls[4] = {
+const pronk_param_decl kHoldParamDecls[5] = {
     {sizeof(pronk_param_decl), "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad",
      "joint stiffness towards the stance"},
     {sizeof(pronk_param_decl), "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad", "joint damping"},
@@ -19,6 +19,7 @@ const pronk_param_decl kHoldParamDecls[4] = {
      "joint positions held by every leg: hip, thigh, calf"},
     {sizeof(pronk_param_decl), "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
      "1: feet in contact carry the weight through J^T f; 0: PD only"},
+    {sizeof(pronk_param_decl), "motor", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "effort", "", kMotorDoc},
 };
 
 HoldSettings readHoldSettings(const ParamReader& read) {
@@ -28,7 +29,28 @@ HoldSettings readHoldSettings(const ParamReader& read) {
   const std::vector<double> stance = read.vector("stance");
   s.stance = {stance[0], stance[1], stance[2]};
   s.gravity_compensation = read.integer("gravity_compensation") != 0;
+  s.motor = motorModelFromName(read.string("motor"));
   return s;
+}
+
+jump::MotorModel motorModelFromName(const std::string& name) {
+  if (name == "dc") return jump::MotorModel::kDcMotor;
+  if (name == "effort") return jump::MotorModel::kEffortBox;
+  throw InvalidArgument("parameter 'motor': '" + name + "' is neither dc nor effort");
+}
+
+std::vector<jump::MotorLimits> motorLimitsFromHost(const pronk_host_api* host, int joint_count) {
+  std::vector<jump::MotorLimits> motors(static_cast<size_t>(joint_count));
+  for (int j = 0; j < joint_count; ++j) {
+    double velocity = 0, effort = 0;
+    if (host->joint_limits(host->host, j, nullptr, nullptr, &velocity, &effort) != PRONK_OK) {
+      throw std::runtime_error("the host has no limits for joint " + std::to_string(j));
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    motors[j].effort = std::isfinite(effort) && effort > 0 ? effort : inf;
+    motors[j].velocity = std::isfinite(velocity) && velocity > 0 ? velocity : inf;
+  }
+  return motors;
 }
 
 namespace {
@@ -63,14 +85,7 @@ HoldController::HoldController(const pronk_host_api* host, const HoldSettings& s
                                std::to_string(foot));
     }
   }
-  effort_limit_.resize(joint_count_);
-  for (int j = 0; j < joint_count_; ++j) {
-    double effort = std::numeric_limits<double>::infinity();
-    if (host->joint_limits(host->host, j, nullptr, nullptr, nullptr, &effort) != PRONK_OK) {
-      throw std::runtime_error("the host has no limits for joint " + std::to_string(j));
-    }
-    effort_limit_(j) = (std::isfinite(effort) && effort > 0) ? effort : std::numeric_limits<double>::infinity();
-  }
+  motors_ = motorLimitsFromHost(host, joint_count_);
   mass_ = host->total_mass(host->host);
   double g[3] = {0, 0, 0};
   host->gravity(host->host, g);
@@ -128,7 +143,7 @@ void HoldController::compute(const pronk_robot_state& s, double* torque) {
 
   for (int j = 0; j < n; ++j) {
     if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
-    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
+    tau(j) = jump::saturateTorque(settings_.motor, motors_[j], tau(j), qd(j));
   }
 }
 

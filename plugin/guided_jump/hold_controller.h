@@ -3,7 +3,8 @@
 // where f = G^+ (-m g, 0) are the ground forces that carry the weight with no
 // moment about the CoM (method/force_distribution.h) and J_i is the joint part (columns
 // 6..) of foot i's world Jacobian: a leg pushes the ground with -f_i, which takes
-// tau = -J_i^T f_i. Each torque is then clamped to the joint's effort limit.
+// tau = -J_i^T f_i. Each torque is then clamped to what the joint's motor can
+// deliver at its speed (method/motor_model.h).
 // This is the controller the jump's thrust, flight and landing phases build on.
 #pragma once
 
@@ -13,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include "method/motor_model.h"
 #include "plugin_params.h"
 #include "pronk/plugin_abi.h"
 
@@ -23,10 +25,22 @@ struct HoldSettings {
   double kd = 2;                            // N m s/rad
   std::array<double, 3> stance{0, 0.75, -1.5};  // rad per leg: hip, thigh, calf
   bool gravity_compensation = true;
+  jump::MotorModel motor = jump::MotorModel::kEffortBox;
 };
 
+// The `motor` parameter's meaning (for the declarations).
+inline constexpr const char* kMotorDoc =
+    "joint motors: dc (torque falls linearly with speed to none at the URDF velocity limit, the paper's DC motor) "
+    "or effort (the URDF effort limit at any speed)";
+// "dc" or "effort"; throws InvalidArgument naming the parameter for any other name.
+jump::MotorModel motorModelFromName(const std::string& name);
+
+// Each joint's effort and velocity limits from the host (infinity where the
+// model gives none).
+std::vector<jump::MotorLimits> motorLimitsFromHost(const pronk_host_api* host, int joint_count);
+
 // The parameters a HoldSettings is read from, shared by both factories.
-extern const pronk_param_decl kHoldParamDecls[4];
+extern const pronk_param_decl kHoldParamDecls[5];
 
 // The settings from kHoldParamDecls' parameters (throws InvalidArgument).
 HoldSettings readHoldSettings(const ParamReader& read);
@@ -55,7 +69,7 @@ class HoldController {
   int foot_count_ = 0;
   double mass_ = 0;
   Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
-  Eigen::VectorXd effort_limit_;  // N m; infinity when none
+  std::vector<jump::MotorLimits> motors_;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;  // 3 x (6 + n) buffer
 };
 

@@ -165,13 +165,14 @@ class JumpEnvironment {
     host->gravity(host->host, g);
     gravity_ = vec(g);
     mass_ = host->total_mass(host->host);
-    // Joints come as (hip, thigh, calf) per leg: the weakest leg's limit per kind,
-    // as the controller saturates them (an effort limit the model lacks: none).
+    // Joints come as (hip, thigh, calf) per leg: the weakest leg's limits per kind,
+    // as the controller saturates them (a limit the model lacks: none).
     effort_limits_.fill(std::numeric_limits<double>::infinity());
+    velocity_limits_.fill(std::numeric_limits<double>::infinity());
+    const std::vector<jump::MotorLimits> motors = motorLimitsFromHost(host, n_);
     for (int j = 0; j < n_; ++j) {
-      double effort = 0;
-      host->joint_limits(host->host, j, nullptr, nullptr, nullptr, &effort);
-      if (effort > 0 && std::isfinite(effort)) effort_limits_[j % 3] = std::min(effort_limits_[j % 3], effort);
+      effort_limits_[j % 3] = std::min(effort_limits_[j % 3], motors[j].effort);
+      velocity_limits_[j % 3] = std::min(velocity_limits_[j % 3], motors[j].velocity);
     }
     limits_.position_min.resize(n_);
     limits_.position_max.resize(n_);
@@ -415,6 +416,8 @@ class JumpEnvironment {
     ws.com_to_trunk = com_to_trunk_;
     ws.mass = mass_;
     ws.effort_limits = effort_limits_;
+    ws.velocity_limits = velocity_limits_;
+    ws.motor = settings_.jump.hold.motor;
     return ws;
   }
 
@@ -476,6 +479,7 @@ class JumpEnvironment {
   Eigen::Vector3d com_to_trunk_ = Eigen::Vector3d::Zero();
   double mass_ = 0;                            // kg, the whole robot
   std::array<double, 3> effort_limits_{};     // N m: hip, thigh, calf
+  std::array<double, 3> velocity_limits_{};   // rad/s: hip, thigh, calf
   std::array<Eigen::Vector3d, jump::kLegCount> start_feet_{};
 
   std::optional<jump::JumpAction> action_;  // the mapped action of this episode

@@ -86,12 +86,7 @@ JumpController::JumpController(const pronk_host_api* host, const JumpSettings& s
     }
     has_action_ = true;
   }
-  effort_limit_.resize(n_);
-  for (int j = 0; j < n_; ++j) {
-    double effort = std::numeric_limits<double>::infinity();
-    host->joint_limits(host->host, j, nullptr, nullptr, nullptr, &effort);
-    effort_limit_(j) = (std::isfinite(effort) && effort > 0) ? effort : std::numeric_limits<double>::infinity();
-  }
+  motors_ = motorLimitsFromHost(host, n_);
   mass_ = host->total_mass(host->host);
   double g[3] = {0, 0, 0};
   host->gravity(host->host, g);
@@ -349,11 +344,11 @@ void JumpController::applyBodyWrench(const pronk_robot_state& s, const Eigen::Ve
   }
 }
 
-void JumpController::saturate(Eigen::Ref<Eigen::VectorXd> tau) {
+void JumpController::saturate(const pronk_robot_state& s, Eigen::Ref<Eigen::VectorXd> tau) {
   commanded_ = tau;
   for (int j = 0; j < n_; ++j) {
     if (!std::isfinite(tau(j))) throw std::runtime_error("torque of joint " + std::to_string(j) + " is not finite");
-    tau(j) = std::clamp(tau(j), -effort_limit_(j), effort_limit_(j));
+    tau(j) = jump::saturateTorque(settings_.hold.motor, motors_[j], tau(j), s.qd[j]);
   }
 }
 
@@ -387,7 +382,7 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
                                             kLandingTiltDamping * vec(s.base_angular_velocity));
     applyBodyWrench(s, force, moment, tau);
   }
-  saturate(tau);
+  saturate(s, tau);
 }
 
 void JumpController::jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref,
@@ -397,7 +392,7 @@ void JumpController::jointTorques(const pronk_robot_state& s, double kp, const E
   Eigen::Map<Eigen::VectorXd> tau(torque, n_);
   tau = kp * (q_ref - q) + settings_.hold.kd * (qd_ref - qd);
   if (gravity) applyBodyWrench(s, mass_ * (com_acceleration - gravity_), moment, tau);
-  saturate(tau);
+  saturate(s, tau);
 }
 
 void JumpController::compute(const pronk_robot_state& s, double* torque) {

@@ -151,7 +151,7 @@ class JumpController {
   const Eigen::Vector3d& startOrigin() const { return origin_; }    // S origin, world
   const Eigen::Matrix3d& startHeading() const { return heading_; }  // S -> world
   double thrustStartTime() const { return thrust_start_; }
-  // The last tick's torques before the effort clamp (what the controller asked for).
+  // The last tick's torques before the motors clamp them (what the controller asked for).
   const Eigen::VectorXd& commandedTorque() const { return commanded_; }
 
  private:
@@ -172,8 +172,8 @@ class JumpController {
   // that put (force, moment about the CoM) on the body (method/force_distribution.h).
   void applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force, const Eigen::Vector3d& moment,
                        Eigen::Ref<Eigen::VectorXd> tau);
-  // Keeps tau as commandedTorque(), then clamps it to the effort limits (throws if not finite).
-  void saturate(Eigen::Ref<Eigen::VectorXd> tau);
+  // Keeps tau as commandedTorque(), then clamps it to what each motor delivers at its speed (throws if not finite).
+  void saturate(const pronk_robot_state& state, Eigen::Ref<Eigen::VectorXd> tau);
 
   const pronk_host_api* host_;
   JumpSettings settings_;
@@ -184,7 +184,7 @@ class JumpController {
   int feet_ = 0;
   double mass_ = 0;
   Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
-  Eigen::VectorXd effort_limit_;
+  std::vector<jump::MotorLimits> motors_;
 
   JumpPhase phase_ = JumpPhase::kHold;
   double reset_time_ = 0;

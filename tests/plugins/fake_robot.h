@@ -24,6 +24,7 @@ class FakeRobot {
         0.12, -0.12, 0.12, -0.12,            //
         0, 0, 0, 0;
     effort_.assign(jointCount(), 1000.0);
+    velocity_.assign(jointCount(), std::numeric_limits<double>::infinity());
     q_.assign(jointCount(), 0.0);
     qd_.assign(jointCount(), 0.0);
     contact_.fill(1);
@@ -37,7 +38,7 @@ class FakeRobot {
       const double inf = std::numeric_limits<double>::infinity();
       if (lo) *lo = -inf;
       if (hi) *hi = inf;
-      if (vel) *vel = inf;
+      if (vel) *vel = self(h).velocity_[j];
       if (eff) *eff = self(h).effort_[j];
       return PRONK_OK;
     };
@@ -128,6 +129,7 @@ class FakeRobot {
   std::array<uint8_t, kFeet>& contact() { return contact_; }
   Eigen::Matrix<double, 3, kFeet>& feet() { return foot_position_; }
   std::vector<double>& effort() { return effort_; }
+  std::vector<double>& velocityLimit() { return velocity_; }
   void setMass(double m) { mass_ = m; }
   void setThreeJointLegs(bool v) { three_joint_legs_ = v; }
 
@@ -151,7 +153,7 @@ class FakeRobot {
   Eigen::Vector3d base_{0, 0, 0.3};
   Eigen::Matrix<double, 3, kFeet> foot_position_;
   std::array<double, 3 * kFeet> zero_forces_{};
-  std::vector<double> effort_, q_, qd_;
+  std::vector<double> effort_, velocity_, q_, qd_;
   std::array<uint8_t, kFeet> contact_{};
   pronk_host_api api_{};
   pronk_robot_state state_{};

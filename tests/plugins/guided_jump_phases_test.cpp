@@ -71,6 +71,7 @@ TEST_F(GuidedJumpPhases, JumpParametersHaveDefaults) {
   EXPECT_EQ(*p.find("action"), "");
   EXPECT_EQ(*p.find("start_delay"), "0.2");
   EXPECT_EQ(*p.find("feedforward"), "gravity");
+  EXPECT_EQ(*p.find("motor"), "effort");
   EXPECT_EQ(*p.find("flight_kp_division"), "3");
 }
 
@@ -90,6 +91,38 @@ TEST_F(GuidedJumpPhases, UnknownFeedforwardIsRefused) {
   } catch (const std::exception& e) {
     EXPECT_THAT(e.what(), HasSubstr("'magic' is none of gravity, dynamic, dynamic_angular"));
   }
+}
+
+TEST_F(GuidedJumpPhases, UnknownMotorModelIsRefused) {
+  try {
+    make({{"motor", "servo", {}}});
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_THAT(e.what(), HasSubstr("parameter 'motor': 'servo' is neither dc nor effort"));
+  }
+}
+
+TEST_F(GuidedJumpPhases, DcMotorTorqueFallsWithJointSpeed) {
+  // 10 N m motors with a 20 rad/s no-load speed (joint 2: 10 rad/s); the stance
+  // PD pushes every joint below its stance hard in + (far more than 10 N m).
+  // A DC motor pushes along its motion with 10 (1 - w / w_max) at most, and with
+  // its full effort against it; the effort box gives 10 N m at any speed.
+  robot_.effort().assign(robot_.effort().size(), 10.0);
+  robot_.velocityLimit().assign(robot_.velocityLimit().size(), 20.0);
+  robot_.velocityLimit()[2] = 10.0;
+  robot_.q() = {0.0, 0.0, -3.0, 0.0, 0.75, -3.0, 0, 0.75, -1.5, 0, 0.75, -1.5};
+  robot_.qd()[1] = 10.0;   // along the push at half the no-load speed
+  robot_.qd()[2] = -20.0;  // against the push, twice the no-load speed
+  robot_.qd()[5] = 25.0;   // along the push, beyond the no-load speed
+  auto dc = make({{"motor", "dc", {}}, {"gravity_compensation", "0", {}}});
+  auto box = make({{"motor", "effort", {}}, {"gravity_compensation", "0", {}}});
+  dc->reset(robot_.state());
+  box->reset(robot_.state());
+  const Eigen::VectorXd t_dc = torques(*dc, robot_.state()), t_box = torques(*box, robot_.state());
+  for (int j : {1, 2, 5}) EXPECT_NEAR(t_box(j), 10.0, 1e-12) << j;
+  EXPECT_NEAR(t_dc(1), 5.0, 1e-12);
+  EXPECT_NEAR(t_dc(2), 10.0, 1e-12);
+  EXPECT_NEAR(t_dc(5), 0.0, 1e-12);
 }
 
 TEST_F(GuidedJumpPhases, WithoutAnActionItOnlyHolds) {

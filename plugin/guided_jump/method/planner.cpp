@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <stdexcept>
 
@@ -482,30 +483,60 @@ std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAct
   for (int i = 0; i < kLegCount; ++i) feet.col(i) = ws.feet[i];
   static const char* const kJointNames[3] = {"hip", "thigh", "calf"};
   const int n = std::max(ws.path_samples, 1);
+  const double dt = thrust.duration() / n;
+  double shortfall = 0.0;  // m/s of planned lift-off speed the motors do not deliver
+  // The tightest joint, for the explanation.
+  double worst_scale = 1.0, worst_t = 0.0, worst_need = 0.0, worst_have = 0.0, worst_speed = 0.0;
+  int worst_leg = 0, worst_joint = 0;
   for (int k = 0; k <= n; ++k) {
     const double t = thrust.duration() * k / n;
     const Eigen::Vector3d c = thrust.position(t);
     const Eigen::Matrix3d R = orient.rotation(t);
-    const Eigen::Vector3d trunk = c + R * ws.com_to_trunk;
-    const Eigen::Matrix3Xd forces =
-        distributeWrench(feet, c, ws.mass * (thrust.acceleration(t) - gravity), Eigen::Vector3d::Zero());
+    const Eigen::Vector3d w = orient.angularVelocityWorld(t);
+    const Eigen::Vector3d trunk_offset = R * ws.com_to_trunk;
+    const Eigen::Vector3d trunk = c + trunk_offset, trunk_velocity = thrust.velocity(t) + w.cross(trunk_offset);
+    const Eigen::Vector3d push = thrust.acceleration(t) - gravity;  // per unit mass
+    const Eigen::Matrix3Xd forces = distributeWrench(feet, c, ws.mass * push, Eigen::Vector3d::Zero());
+    // The share of the planned ground force the motors deliver at this sample:
+    // the least over the joints of available / needed torque.
+    double scale = 1.0;
     for (int i = 0; i < kLegCount; ++i) {
-      const LegIkResult ik = solveLegIk(ws.legs[i], R.transpose() * (ws.feet[i] - trunk));
+      const Eigen::Vector3d foot_from_trunk = ws.feet[i] - trunk;
+      const LegIkResult ik = solveLegIk(ws.legs[i], R.transpose() * foot_from_trunk);
       if (!ik.ok()) continue;  // out of reach: the workspace check's finding, not this one's
-      const Eigen::Vector3d tau = -footJacobian(ws.legs[i], ik.q).transpose() * (R.transpose() * forces.col(i));
+      const Eigen::Matrix3d J = footJacobian(ws.legs[i], ik.q);
+      const Eigen::Vector3d tau = -J.transpose() * (R.transpose() * forces.col(i));
+      // The stance foot is still in the world, so in the trunk frame it moves at
+      // d/dt R^T (f - p) = -R^T (w x (f - p) + p').
+      const Eigen::Vector3d qd = J.partialPivLu().solve(-R.transpose() * (w.cross(foot_from_trunk) + trunk_velocity));
       for (int j = 0; j < 3; ++j) {
-        if (std::abs(tau(j)) > ws.effort_limits[j]) {
-          if (!explain) return std::string();
-          std::ostringstream msg;
-          msg << legName(static_cast<Leg>(i)) << " " << kJointNames[j] << " would need " << std::abs(tau(j))
-              << " N m (limit " << ws.effort_limits[j] << ") at t = " << t << " s of the " << thrust.duration()
-              << " s thrust (CoM acceleration " << thrust.acceleration(t).transpose() << " m/s^2)";
-          return msg.str();
+        const double speed = std::isfinite(qd(j)) ? qd(j) : 0.0;  // a singular leg: the workspace check's finding
+        const TorqueRange range = availableTorque(ws.motor, {ws.effort_limits[j], ws.velocity_limits[j]}, speed);
+        const double have = tau(j) > 0.0 ? range.upper : -range.lower;
+        if (std::abs(tau(j)) <= have) continue;
+        const double joint_scale = have / std::abs(tau(j));
+        if (joint_scale < scale) scale = joint_scale;
+        if (joint_scale < worst_scale) {
+          worst_scale = joint_scale;
+          worst_t = t;
+          worst_need = std::abs(tau(j));
+          worst_have = have;
+          worst_speed = speed;
+          worst_leg = i;
+          worst_joint = j;
         }
       }
     }
+    shortfall += (1.0 - scale) * push.norm() * ((k == 0 || k == n) ? dt / 2.0 : dt);
   }
-  return std::nullopt;
+  if (shortfall <= ws.max_speed_shortfall) return std::nullopt;
+  if (!explain) return std::string();
+  std::ostringstream msg;
+  msg << "the motors would leave the lift-off " << shortfall << " m/s slower than planned (allowed "
+      << ws.max_speed_shortfall << "); the tightest: " << legName(static_cast<Leg>(worst_leg)) << " "
+      << kJointNames[worst_joint] << " would need " << worst_need << " N m, its motor delivers " << worst_have
+      << " at " << worst_speed << " rad/s, t = " << worst_t << " s of the " << thrust.duration() << " s thrust";
+  return msg.str();
 }
 
 }  // namespace
@@ -590,6 +621,12 @@ void PlannerConfig::check() const {
     if (!(std::isfinite(workspace->mass) && workspace->mass >= 0.0)) configError("workspace mass must be finite and >= 0");
     for (double e : workspace->effort_limits) {
       if (!(e > 0.0)) configError("workspace effort limits must be > 0 (infinity: unlimited)");
+    }
+    for (double v : workspace->velocity_limits) {
+      if (!(v > 0.0)) configError("workspace velocity limits must be > 0 (infinity: unlimited)");
+    }
+    if (!(std::isfinite(workspace->max_speed_shortfall) && workspace->max_speed_shortfall >= 0.0)) {
+      configError("workspace max_speed_shortfall must be finite and >= 0");
     }
   }
 }

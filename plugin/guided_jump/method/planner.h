@@ -41,6 +41,7 @@
 #include "method/ballistics.h"
 #include "method/explosive_phase.h"
 #include "method/leg_ik.h"
+#include "method/motor_model.h"
 #include "method/thrust_trajectory.h"
 
 namespace pronk::jump {
@@ -61,11 +62,21 @@ struct LegWorkspace {
   int path_samples = 60;  // samples of the thrust path (plus both ends) checked
   bool require_within_limits = true;
   // For the torque prediction (thrustExceedsTorque): the whole robot's mass (0:
-  // torques not checked) and the effort limits of each leg's hip, thigh and calf.
+  // torques not checked), the effort and velocity limits of each leg's hip,
+  // thigh and calf, and the motor model that turns them into the torque
+  // available at a joint speed (method/motor_model.h).
   double mass = 0.0;
   std::array<double, 3> effort_limits{std::numeric_limits<double>::infinity(),
                                       std::numeric_limits<double>::infinity(),
                                       std::numeric_limits<double>::infinity()};
+  std::array<double, 3> velocity_limits{std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::infinity(),
+                                        std::numeric_limits<double>::infinity()};
+  MotorModel motor = MotorModel::kEffortBox;
+  // The planned lift-off speed the motors may fall short of, m/s: where a joint
+  // needs more torque than its motor delivers, the ground force shrinks by that
+  // ratio, and the lost acceleration is integrated over the thrust.
+  double max_speed_shortfall = 0.1;
 };
 
 // The workspace of a robot standing at rest with every leg at joint angles
@@ -104,10 +115,15 @@ std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double 
 // sample of the thrust path the force m (a - g) of the planned CoM acceleration
 // is shared over the stance feet by the minimum-norm distribution with no moment
 // about the CoM (the controller's feed-forward, force_distribution.h), and each
-// leg's torques -J(q)^T f follow from the leg's IK at that trunk pose. Returns a
-// sentence naming the first joint whose predicted torque exceeds its effort limit
-// (when and by how much), std::nullopt when none does or workspace.mass is 0.
-// The legs' own inertia is not in the prediction.
+// leg's torques -J(q)^T f follow from the leg's IK at that trunk pose. Its joint
+// speeds J(q)^-1 x' follow from the planned CoM velocity and trunk angular
+// velocity (x the stance foot in the trunk frame). Where a joint needs more than
+// its motor delivers at that speed (workspace.motor), the whole ground force is
+// taken to shrink by the ratio; the acceleration so lost, integrated over the
+// thrust, is the lift-off speed the motors fall short by. Returns a sentence
+// with that shortfall and the tightest joint (when, how much) when it exceeds
+// workspace.max_speed_shortfall, std::nullopt otherwise or when workspace.mass
+// is 0. The legs' own inertia is not in the prediction.
 std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const LegWorkspace& workspace, const Eigen::Vector3d& gravity);
@@ -139,7 +155,7 @@ struct PlannerConfig {
   std::vector<double> thrust_duration_s{0.45, 0.4};
   // Fractions of the target yaw done during the thrust (the rest in flight).
   std::vector<double> yaw_at_lift_off_fraction{0.5, 0.25, 0.0};
-  double max_bezier_speed_mps = 1.25;        // the prototype's saturation threshold (~1.3 m/s)
+  double max_bezier_speed_mps = 1.25;       // the prototype's saturation threshold (~1.3 m/s)
   double max_explosive_acceleration = 20.0;  // m/s^2 along the UARM line
   double min_apex_rise_m = 0.03;             // apex above the lift-off CoM
   // Sideways jumps lift off steeper: the elevation is raised from the rule's
