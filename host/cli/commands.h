@@ -36,6 +36,7 @@ struct RunOptions {
   std::string policy;         // "ballistic" or a policy file; "" = the scenario's <environment policy>
   std::string sweep;          // run this sweep's cases instead of the targets
   bool video_per_jump = false;  // one video file per jump instead of one for all
+  std::vector<std::string> params;  // NAME=VALUE: the environment's parameters in a jump run, else the controller's
 };
 int runCommand(const CommonOptions& common, const RunOptions& options);
 

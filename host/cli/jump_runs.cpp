@@ -237,6 +237,14 @@ std::vector<ParamSetting> withDurationOption(std::vector<ParamSetting> params, c
 
 }  // namespace
 
+std::vector<ParamSetting> withParamOptions(std::vector<ParamSetting> params, const RunOptions& options) {
+  for (const std::string& option : options.params) {
+    const size_t eq = option.find('=');  // main() checked there is one, after a name
+    setParam(params, {option.substr(0, eq), option.substr(eq + 1), SourceLocation{"--param", 0}});
+  }
+  return params;
+}
+
 bool runsJumps(const Scenario& scenario, const RunOptions& options) {
   return scenario.environment && options.controller.empty();
 }
@@ -253,7 +261,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   loadPlugins(registry, common.plugin_paths, &as_controller);
   const pronk_factory& factory = findEnvironment(spec, registry);
   const std::string origin = registry.libraryOf(&factory)->path();
-  const ResolvedParams params = resolveParams(factory, withDurationOption(spec.params, options), spec.where);
+  const ResolvedParams params = resolveParams(factory, withDurationOption(withParamOptions(spec.params, options), options), spec.where);
 
   const Policy policy = makePolicy(policy_name, factory);
 

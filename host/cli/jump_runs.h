@@ -14,6 +14,10 @@ bool runsJumps(const Scenario& scenario, const RunOptions& options);
 
 int runJumps(const CommonOptions& common, const RunOptions& options, const Scenario& scenario);
 
+// `params` with each --param NAME=VALUE of `options` set (replacing one of that
+// name); resolveParams then reports a bad name or value against the flag.
+std::vector<ParamSetting> withParamOptions(std::vector<ParamSetting> params, const RunOptions& options);
+
 // "ballistic": the environment's prior_action; otherwise a policy file.
 // Throws InputError for a file that cannot be used with `factory`.
 Policy makePolicy(const std::string& name, const pronk_factory& factory);

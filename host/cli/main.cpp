@@ -46,6 +46,10 @@ int main(int argc, char** argv) {
                       "planner) or a policy file (default: the scenario's <environment policy>)");
   run_cmd->add_option("--sweep", run.sweep, "run the cases of this <sweeps> entry instead of the targets");
   run_cmd->add_flag("--video-per-jump", run.video_per_jump, "one video file per jump (NAME-000.mp4 ...) instead of one");
+  run_cmd->add_option("--param", run.params,
+                      "NAME=VALUE: set a parameter of the scenario's <environment> in a jump run, of its controller "
+                      "otherwise, over the file's (repeatable; e.g. --param motor=dc)")
+      ->check([](const std::string& s) { return s.find('=') == std::string::npos || s.front() == '=' ? std::string("expected NAME=VALUE") : std::string(); });
 
   RenderOptions render;
   auto* render_cmd = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "

@@ -40,6 +40,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   if (!options.controller.empty()) {
     scenario.platform.controller = ControllerSpec{options.controller, "", {}, {"--controller", 0}};
   }
+  scenario.platform.controller.params = withParamOptions(scenario.platform.controller.params, options);
   const double duration = options.duration > 0 ? options.duration : scenario.sim.duration;
   PluginRegistry registry;
   loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
