@@ -261,7 +261,8 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   loadPlugins(registry, common.plugin_paths, &as_controller);
   const pronk_factory& factory = findEnvironment(spec, registry);
   const std::string origin = registry.libraryOf(&factory)->path();
-  const ResolvedParams params = resolveParams(factory, withDurationOption(withParamOptions(spec.params, options), options), spec.where);
+  const ResolvedParams params =
+      resolveParams(factory, withDurationOption(withParamOptions(spec.params, options), options), spec.where);
 
   const Policy policy = makePolicy(policy_name, factory);
 

@@ -49,7 +49,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--param", run.params,
                       "NAME=VALUE: set a parameter of the scenario's <environment> in a jump run, of its controller "
                       "otherwise, over the file's (repeatable; e.g. --param motor=dc)")
-      ->check([](const std::string& s) { return s.find('=') == std::string::npos || s.front() == '=' ? std::string("expected NAME=VALUE") : std::string(); });
+      ->check([](const std::string& s) {
+        return s.find('=') == std::string::npos || s.front() == '=' ? std::string("expected NAME=VALUE") : std::string();
+      });
 
   RenderOptions render;
   auto* render_cmd = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "

@@ -167,12 +167,11 @@ class JumpEnvironment {
     mass_ = host->total_mass(host->host);
     // Joints come as (hip, thigh, calf) per leg: the weakest leg's limits per kind,
     // as the controller saturates them (a limit the model lacks: none).
-    effort_limits_.fill(std::numeric_limits<double>::infinity());
-    velocity_limits_.fill(std::numeric_limits<double>::infinity());
     const std::vector<jump::MotorLimits> motors = motorLimitsFromHost(host, n_);
     for (int j = 0; j < n_; ++j) {
-      effort_limits_[j % 3] = std::min(effort_limits_[j % 3], motors[j].effort);
-      velocity_limits_[j % 3] = std::min(velocity_limits_[j % 3], motors[j].velocity);
+      jump::MotorLimits& kind = joint_motors_[j % 3];
+      kind.effort = std::min(kind.effort, motors[j].effort);
+      kind.velocity = std::min(kind.velocity, motors[j].velocity);
     }
     limits_.position_min.resize(n_);
     limits_.position_max.resize(n_);
@@ -415,8 +414,7 @@ class JumpEnvironment {
     ws.feet = start_feet_;
     ws.com_to_trunk = com_to_trunk_;
     ws.mass = mass_;
-    ws.effort_limits = effort_limits_;
-    ws.velocity_limits = velocity_limits_;
+    ws.joint_motors = joint_motors_;
     ws.motor = settings_.jump.hold.motor;
     return ws;
   }
@@ -478,8 +476,7 @@ class JumpEnvironment {
   double standing_height_ = 0;
   Eigen::Vector3d com_to_trunk_ = Eigen::Vector3d::Zero();
   double mass_ = 0;                            // kg, the whole robot
-  std::array<double, 3> effort_limits_{};     // N m: hip, thigh, calf
-  std::array<double, 3> velocity_limits_{};   // rad/s: hip, thigh, calf
+  std::array<jump::MotorLimits, 3> joint_motors_{};  // hip, thigh, calf (none until the constructor's)
   std::array<Eigen::Vector3d, jump::kLegCount> start_feet_{};
 
   std::optional<jump::JumpAction> action_;  // the mapped action of this episode

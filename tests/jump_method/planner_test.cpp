@@ -256,11 +256,11 @@ TEST(Planner, TorquePredictionFlagsWeakMotorsAndNamesTheJoint) {
   EXPECT_FALSE(thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity));
   // The Go1 (12.7 kg; 23.7, 23.7, 35.55 N m): the paper's forward jump fits.
   ws.mass = 12.7;
-  ws.effort_limits = {23.7, 23.7, 35.55};
+  ws.joint_motors = {MotorLimits{23.7}, MotorLimits{23.7}, MotorLimits{35.55}};
   EXPECT_FALSE(thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity));
   // A quarter of each limit does not: the standing weight alone needs about
   // 31 N per foot through a 0.2 m lever arm, and the jump more.
-  ws.effort_limits = {23.7 / 4, 23.7 / 4, 35.55 / 4};
+  ws.joint_motors = {MotorLimits{23.7 / 4}, MotorLimits{23.7 / 4}, MotorLimits{35.55 / 4}};
   const std::optional<std::string> over =
       thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity);
   ASSERT_TRUE(over.has_value());
@@ -281,8 +281,7 @@ TEST(Planner, TorquePredictionOfADcMotorCountsTheJointSpeeds) {
   ASSERT_TRUE(plan.feasible) << plan.reason;
   LegWorkspace ws = *cfg.workspace;
   ws.mass = 12.7;
-  ws.effort_limits = {23.7, 23.7, 35.55};
-  ws.velocity_limits = {30.1, 30.1, 20.06};  // the Go1's URDF
+  ws.joint_motors = {MotorLimits{23.7, 30.1}, MotorLimits{23.7, 30.1}, MotorLimits{35.55, 20.06}};  // the Go1's URDF
   auto check = [&](const LegWorkspace& w) {
     return thrustExceedsTorque(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin(), w, cfg.gravity);
   };
@@ -291,7 +290,7 @@ TEST(Planner, TorquePredictionOfADcMotorCountsTheJointSpeeds) {
   EXPECT_FALSE(check(ws));
   // Motors a third as fast leave it short: the joints' speeds near lift-off eat
   // the torque a DC motor has, though an effort box at any speed would hold.
-  ws.velocity_limits = {10.0, 10.0, 20.06 / 3};
+  ws.joint_motors = {MotorLimits{23.7, 10.0}, MotorLimits{23.7, 10.0}, MotorLimits{35.55, 20.06 / 3}};
   const std::optional<std::string> slow = check(ws);
   ASSERT_TRUE(slow.has_value());
   EXPECT_NE(slow->find("slower than planned"), std::string::npos) << *slow;

@@ -485,9 +485,10 @@ std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAct
   const int n = std::max(ws.path_samples, 1);
   const double dt = thrust.duration() / n;
   double shortfall = 0.0;  // m/s of planned lift-off speed the motors do not deliver
-  // The tightest joint, for the explanation.
-  double worst_scale = 1.0, worst_t = 0.0, worst_need = 0.0, worst_have = 0.0, worst_speed = 0.0;
-  int worst_leg = 0, worst_joint = 0;
+  struct JointDemand {
+    double scale = 1.0, t = 0.0, need = 0.0, have = 0.0, speed = 0.0;
+    int leg = 0, joint = 0;
+  } tightest;  // for the explanation
   for (int k = 0; k <= n; ++k) {
     const double t = thrust.duration() * k / n;
     const Eigen::Vector3d c = thrust.position(t);
@@ -511,20 +512,12 @@ std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAct
       const Eigen::Vector3d qd = J.partialPivLu().solve(-R.transpose() * (w.cross(foot_from_trunk) + trunk_velocity));
       for (int j = 0; j < 3; ++j) {
         const double speed = std::isfinite(qd(j)) ? qd(j) : 0.0;  // a singular leg: the workspace check's finding
-        const TorqueRange range = availableTorque(ws.motor, {ws.effort_limits[j], ws.velocity_limits[j]}, speed);
+        const TorqueRange range = availableTorque(ws.motor, ws.joint_motors[j], speed);
         const double have = tau(j) > 0.0 ? range.upper : -range.lower;
         if (std::abs(tau(j)) <= have) continue;
         const double joint_scale = have / std::abs(tau(j));
         if (joint_scale < scale) scale = joint_scale;
-        if (joint_scale < worst_scale) {
-          worst_scale = joint_scale;
-          worst_t = t;
-          worst_need = std::abs(tau(j));
-          worst_have = have;
-          worst_speed = speed;
-          worst_leg = i;
-          worst_joint = j;
-        }
+        if (joint_scale < tightest.scale) tightest = {joint_scale, t, std::abs(tau(j)), have, speed, i, j};
       }
     }
     shortfall += (1.0 - scale) * push.norm() * ((k == 0 || k == n) ? dt / 2.0 : dt);
@@ -533,9 +526,10 @@ std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAct
   if (!explain) return std::string();
   std::ostringstream msg;
   msg << "the motors would leave the lift-off " << shortfall << " m/s slower than planned (allowed "
-      << ws.max_speed_shortfall << "); the tightest: " << legName(static_cast<Leg>(worst_leg)) << " "
-      << kJointNames[worst_joint] << " would need " << worst_need << " N m, its motor delivers " << worst_have
-      << " at " << worst_speed << " rad/s, t = " << worst_t << " s of the " << thrust.duration() << " s thrust";
+      << ws.max_speed_shortfall << "); the tightest: " << legName(static_cast<Leg>(tightest.leg)) << " "
+      << kJointNames[tightest.joint] << " would need " << tightest.need << " N m, its motor delivers "
+      << tightest.have << " at " << tightest.speed << " rad/s, t = " << tightest.t << " s of the "
+      << thrust.duration() << " s thrust";
   return msg.str();
 }
 
@@ -619,11 +613,9 @@ void PlannerConfig::check() const {
     }
     if (!workspace->com_to_trunk.allFinite()) configError("workspace com_to_trunk must be finite");
     if (!(std::isfinite(workspace->mass) && workspace->mass >= 0.0)) configError("workspace mass must be finite and >= 0");
-    for (double e : workspace->effort_limits) {
-      if (!(e > 0.0)) configError("workspace effort limits must be > 0 (infinity: unlimited)");
-    }
-    for (double v : workspace->velocity_limits) {
-      if (!(v > 0.0)) configError("workspace velocity limits must be > 0 (infinity: unlimited)");
+    for (const MotorLimits& m : workspace->joint_motors) {
+      if (!(m.effort > 0.0)) configError("workspace effort limits must be > 0 (infinity: unlimited)");
+      if (!(m.velocity > 0.0)) configError("workspace velocity limits must be > 0 (infinity: unlimited)");
     }
     if (!(std::isfinite(workspace->max_speed_shortfall) && workspace->max_speed_shortfall >= 0.0)) {
       configError("workspace max_speed_shortfall must be finite and >= 0");

@@ -62,16 +62,11 @@ struct LegWorkspace {
   int path_samples = 60;  // samples of the thrust path (plus both ends) checked
   bool require_within_limits = true;
   // For the torque prediction (thrustExceedsTorque): the whole robot's mass (0:
-  // torques not checked), the effort and velocity limits of each leg's hip,
-  // thigh and calf, and the motor model that turns them into the torque
+  // torques not checked), the motor limits of each leg's hip, thigh and calf
+  // (default: none), and the motor model that turns them into the torque
   // available at a joint speed (method/motor_model.h).
   double mass = 0.0;
-  std::array<double, 3> effort_limits{std::numeric_limits<double>::infinity(),
-                                      std::numeric_limits<double>::infinity(),
-                                      std::numeric_limits<double>::infinity()};
-  std::array<double, 3> velocity_limits{std::numeric_limits<double>::infinity(),
-                                        std::numeric_limits<double>::infinity(),
-                                        std::numeric_limits<double>::infinity()};
+  std::array<MotorLimits, 3> joint_motors{};
   MotorModel motor = MotorModel::kEffortBox;
   // The planned lift-off speed the motors may fall short of, m/s: where a joint
   // needs more torque than its motor delivers, the ground force shrinks by that
