@@ -90,6 +90,9 @@ const std::vector<pronk_param_decl>& paramDecls() {
          "safety filter: the CoM apex must clear the target's standing CoM height by this"},
         {sizeof(pronk_param_decl), "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
          "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
+        {sizeof(pronk_param_decl), "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
+         "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
+         "torque check, under the 'motor' model)"},
     };
     d.insert(d.end(), own.begin(), own.end());
     return d;
@@ -104,6 +107,7 @@ struct EnvironmentSettings {
   jump::RewardSettings reward;
   double apex_clearance = 0.0;
   bool workspace_check = true;
+  double max_speed_shortfall = 0.1;
 };
 
 EnvironmentSettings readSettings(const ParamReader& read) {
@@ -130,6 +134,7 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   s.reward.raw_action_limit = s.ranges.raw_limit;
   s.apex_clearance = read.real("apex_clearance");
   s.workspace_check = read.integer("workspace_check") != 0;
+  s.max_speed_shortfall = read.real("max_speed_shortfall");
   return s;
 }
 
@@ -307,9 +312,13 @@ class JumpEnvironment {
               jump::thrustLeavesWorkspace(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws)) {
         throw Rejected("leg_workspace: " + *out);
       }
-      if (std::optional<std::string> over =
-              jump::thrustExceedsTorque(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws, gravity_)) {
-        throw Rejected("torque_limit: " + *over);
+      const double shortfall =
+          jump::thrustSpeedShortfall(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws, gravity_);
+      metric("predicted_speed_shortfall", shortfall);
+      if (shortfall > ws->max_speed_shortfall) {
+        throw Rejected("torque_limit: " + jump::thrustExceedsTorque(mapped.action, azimuth, com_start,
+                                                                    Eigen::Vector3d::Zero(), *ws, gravity_)
+                                              .value_or("the torque check failed"));
       }
     }
 
@@ -416,6 +425,7 @@ class JumpEnvironment {
     ws.mass = mass_;
     ws.joint_motors = joint_motors_;
     ws.motor = settings_.jump.hold.motor;
+    ws.max_speed_shortfall = settings_.max_speed_shortfall;
     return ws;
   }
 

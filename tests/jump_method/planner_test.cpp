@@ -267,12 +267,69 @@ TEST(Planner, TorquePredictionFlagsWeakMotorsAndNamesTheJoint) {
   EXPECT_NE(over->find("slower than planned"), std::string::npos) << *over;
   EXPECT_NE(over->find(" would need "), std::string::npos) << *over;
   EXPECT_NE(over->find("its motor delivers "), std::string::npos) << *over;
-  // The planner with such motors finds nothing and says why.
+  // Without its gentler thrusts the planner finds nothing for such motors and says why.
   cfg.workspace = ws;
-  const PlannedJump weak = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
-  EXPECT_FALSE(weak.feasible);
-  EXPECT_EQ(weak.limit, PlanLimit::kTorque);
-  EXPECT_NE(weak.reason.find("torque"), std::string::npos) << weak.reason;
+  PlannerConfig first_pass_only = cfg;
+  first_pass_only.gentler_thrusts.clear();
+  const PlannedJump refused = planJump({{0.4, 0.0, 0.0}, 0.0}, first_pass_only);
+  EXPECT_FALSE(refused.feasible);
+  EXPECT_EQ(refused.limit, PlanLimit::kTorque);
+  EXPECT_NE(refused.reason.find("torque"), std::string::npos) << refused.reason;
+  EXPECT_GT(refused.speed_shortfall, ws.max_speed_shortfall);
+  // With them it finds a gentler push the quarter motors can deliver, and the
+  // shortfall it reports is the torque check's.
+  const PlannedJump gentle = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
+  ASSERT_TRUE(gentle.feasible) << gentle.reason;
+  EXPECT_LE(gentle.speed_shortfall, ws.max_speed_shortfall);
+  EXPECT_NEAR(gentle.speed_shortfall,
+              thrustSpeedShortfall(gentle.action, gentle.azimuth_rad, cfg.start_com, cfg.polarOrigin(), ws, cfg.gravity),
+              1e-12);
+  EXPECT_LT(gentle.explosive_acceleration, plan.explosive_acceleration);
+  // A fifth of each limit is beyond every gentler thrust too.
+  ws.joint_motors = {MotorLimits{23.7 / 5}, MotorLimits{23.7 / 5}, MotorLimits{35.55 / 5}};
+  cfg.workspace = ws;
+  const PlannedJump weakest = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
+  EXPECT_FALSE(weakest.feasible);
+  EXPECT_EQ(weakest.limit, PlanLimit::kTorque);
+  EXPECT_NE(weakest.reason.find("slower than planned"), std::string::npos) << weakest.reason;
+}
+
+TEST(Planner, GentlerThrustsFitTheDcMotorsWhereTheFirstPassCannot) {
+  // The Go1's lateral 0.3 m jump: every first-pass candidate turns a calf near
+  // its 20 rad/s no-load speed in the explosive phase; a lower, longer push fits.
+  PlannerConfig cfg = go1Config(true);
+  cfg.workspace->mass = 12.7;
+  cfg.workspace->joint_motors = {MotorLimits{23.7, 30.1}, MotorLimits{23.7, 30.1}, MotorLimits{35.55, 20.06}};
+  cfg.workspace->motor = MotorModel::kDcMotor;
+  const JumpTarget lateral{{0.0, 0.3, 0.0}, 0.0};
+  PlannerConfig first_pass_only = cfg;
+  first_pass_only.gentler_thrusts.clear();
+  const PlannedJump refused = planJump(lateral, first_pass_only);
+  ASSERT_FALSE(refused.feasible);
+  EXPECT_EQ(refused.limit, PlanLimit::kTorque);
+  const PlannedJump plan = planJump(lateral, cfg);
+  ASSERT_TRUE(plan.feasible) << plan.reason;
+  EXPECT_LE(plan.speed_shortfall, cfg.workspace->max_speed_shortfall);
+  // It still lands on the target and keeps every parameter in its range.
+  EXPECT_LT((flownLanding(plan, cfg) - plan.target_com).head<2>().norm(), 1e-6);
+  expectWithinRanges(plan.action, cfg.ranges);
+  // A gentler thrust is one of the rule's: a longer thrust or a lower lift-off.
+  const bool longer = plan.action.thrust_duration_s > cfg.thrust_duration_s.front() + 1e-9;
+  const bool lower = plan.lift_off.position.z() < cfg.start_com.z() + cfg.lift_off_rise_m.back() - 1e-9;
+  EXPECT_TRUE(longer || lower || plan.explosive_acceleration < cfg.max_explosive_acceleration - 1e-9);
+}
+
+TEST(Planner, BadGentlerThrustsAreRefusedByName) {
+  PlannerConfig cfg = go1Config(false);
+  cfg.gentler_thrusts = {{{}, {0.5}, 1.25, 20.0}};
+  EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
+  cfg.gentler_thrusts = {{{0.0}, {0.5}, 1.25, 0.0}};
+  try {
+    planJump({{0.4, 0.0, 0.0}, 0.0}, cfg);
+    FAIL() << "a zero explosive acceleration passed";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gentler thrust"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Planner, TorquePredictionOfADcMotorCountsTheJointSpeeds) {

@@ -475,20 +475,22 @@ std::optional<std::string> supportProblem(const ThrustPlan& thrust, const std::a
   return std::nullopt;
 }
 
-std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
-                                         const Eigen::Vector3d& gravity, bool explain) {
-  if (!(ws.mass > 0.0)) return std::nullopt;
+// The torque check's finding: the predicted lift-off speed shortfall and the
+// tightest joint on the way.
+struct TorqueVerdict {
+  double shortfall = 0.0;  // m/s of planned lift-off speed the motors do not deliver
+  double scale = 1.0, t = 0.0, need = 0.0, have = 0.0, speed = 0.0;  // the tightest joint
+  int leg = 0, joint = 0;
+};
+
+TorqueVerdict torqueVerdict(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
+                            const Eigen::Vector3d& gravity) {
+  TorqueVerdict verdict;
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   Eigen::Matrix3Xd feet(3, kLegCount);
   for (int i = 0; i < kLegCount; ++i) feet.col(i) = ws.feet[i];
-  static const char* const kJointNames[3] = {"hip", "thigh", "calf"};
   const int n = std::max(ws.path_samples, 1);
   const double dt = thrust.duration() / n;
-  double shortfall = 0.0;  // m/s of planned lift-off speed the motors do not deliver
-  struct JointDemand {
-    double scale = 1.0, t = 0.0, need = 0.0, have = 0.0, speed = 0.0;
-    int leg = 0, joint = 0;
-  } tightest;  // for the explanation
   for (int k = 0; k <= n; ++k) {
     const double t = thrust.duration() * k / n;
     const Eigen::Vector3d c = thrust.position(t);
@@ -517,19 +519,29 @@ std::optional<std::string> torqueProblem(const ThrustPlan& thrust, const JumpAct
         if (std::abs(tau(j)) <= have) continue;
         const double joint_scale = have / std::abs(tau(j));
         if (joint_scale < scale) scale = joint_scale;
-        if (joint_scale < tightest.scale) tightest = {joint_scale, t, std::abs(tau(j)), have, speed, i, j};
+        if (joint_scale < verdict.scale) {
+          verdict.scale = joint_scale;
+          verdict.t = t;
+          verdict.need = std::abs(tau(j));
+          verdict.have = have;
+          verdict.speed = speed;
+          verdict.leg = i;
+          verdict.joint = j;
+        }
       }
     }
-    shortfall += (1.0 - scale) * push.norm() * ((k == 0 || k == n) ? dt / 2.0 : dt);
+    verdict.shortfall += (1.0 - scale) * push.norm() * ((k == 0 || k == n) ? dt / 2.0 : dt);
   }
-  if (shortfall <= ws.max_speed_shortfall) return std::nullopt;
-  if (!explain) return std::string();
+  return verdict;
+}
+
+std::string describe(const TorqueVerdict& v, const LegWorkspace& ws, double thrust_duration) {
+  static const char* const kJointNames[3] = {"hip", "thigh", "calf"};
   std::ostringstream msg;
-  msg << "the motors would leave the lift-off " << shortfall << " m/s slower than planned (allowed "
-      << ws.max_speed_shortfall << "); the tightest: " << legName(static_cast<Leg>(tightest.leg)) << " "
-      << kJointNames[tightest.joint] << " would need " << tightest.need << " N m, its motor delivers "
-      << tightest.have << " at " << tightest.speed << " rad/s, t = " << tightest.t << " s of the "
-      << thrust.duration() << " s thrust";
+  msg << "the motors would leave the lift-off " << v.shortfall << " m/s slower than planned (allowed "
+      << ws.max_speed_shortfall << "); the tightest: " << legName(static_cast<Leg>(v.leg)) << " "
+      << kJointNames[v.joint] << " would need " << v.need << " N m, its motor delivers " << v.have << " at "
+      << v.speed << " rad/s, t = " << v.t << " s of the " << thrust_duration << " s thrust";
   return msg.str();
 }
 
@@ -549,10 +561,20 @@ std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double 
                         true);
 }
 
+double thrustSpeedShortfall(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
+                            const Eigen::Vector3d& polar_origin, const LegWorkspace& ws, const Eigen::Vector3d& gravity) {
+  if (!(ws.mass > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return torqueVerdict(ThrustPlan(action, azimuth, com_start, polar_origin), action, ws, gravity).shortfall;
+}
+
 std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const LegWorkspace& ws, const Eigen::Vector3d& gravity) {
-  return torqueProblem(ThrustPlan(action, azimuth, com_start, polar_origin), action, ws, gravity, true);
+  if (!(ws.mass > 0.0)) return std::nullopt;
+  const ThrustPlan thrust(action, azimuth, com_start, polar_origin);
+  const TorqueVerdict verdict = torqueVerdict(thrust, action, ws, gravity);
+  if (verdict.shortfall <= ws.max_speed_shortfall) return std::nullopt;
+  return describe(verdict, ws, thrust.duration());
 }
 
 LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
@@ -595,6 +617,23 @@ void PlannerConfig::check() const {
   }
   for (double v : yaw_at_lift_off_fraction) {
     if (!(std::isfinite(v) && v >= 0.0 && v <= 1.0)) configError("yaw_at_lift_off_fraction values must be in [0, 1]");
+  }
+  for (const GentlerThrust& g : gentler_thrusts) {
+    if (g.lift_off_rise_m.empty() || g.thrust_duration_s.empty()) {
+      configError("every gentler thrust needs at least one lift-off rise and one thrust duration");
+    }
+    for (double v : g.lift_off_rise_m) {
+      if (!std::isfinite(v) || standingHeight() + v <= 0.0) {
+        configError("gentler thrust lift_off_rise_m values must keep the CoM above the surface");
+      }
+    }
+    for (double v : g.thrust_duration_s) {
+      if (!(std::isfinite(v) && v > 0.0)) configError("gentler thrust durations must be finite and > 0");
+    }
+    if (!(std::isfinite(g.max_bezier_speed_mps) && g.max_bezier_speed_mps > 0.0 &&
+          std::isfinite(g.max_explosive_acceleration) && g.max_explosive_acceleration > 0.0)) {
+      configError("gentler thrust speed caps and explosive accelerations must be > 0");
+    }
   }
   if (!(std::isfinite(max_bezier_speed_mps) && max_bezier_speed_mps > 0.0)) configError("max_bezier_speed_mps must be > 0");
   if (!(std::isfinite(max_explosive_acceleration) && max_explosive_acceleration > 0.0)) {
@@ -660,13 +699,8 @@ PlannedJump explained(const Rejection& r, const JumpTarget& target, const Planne
   return plan;
 }
 
-}  // namespace
 
-PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
-  config.check();
-  if (!target.displacement.allFinite() || !std::isfinite(target.yaw_rad)) {
-    throw std::invalid_argument("planJump: the target displacement and yaw must be finite");
-  }
+PlannedJump searchCandidates(const JumpTarget& target, const PlannerConfig& config) {
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
   const Eigen::Vector3d polar_origin = config.polarOrigin();
   const TargetFrame frame = targetFrame(target, config);
@@ -730,8 +764,9 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
             reject(PlanLimit::kLegWorkspace, leg_failure);
           } else if (!support_first && leavesSupport()) {
             reject(PlanLimit::kSupport, support_failure);
-          } else if (torqueProblem(*thrust, plan.action, ws, config.gravity, false)) {
-            reject(PlanLimit::kTorque, torque_failure);
+          } else if (ws.mass > 0.0) {
+            plan.speed_shortfall = torqueVerdict(*thrust, plan.action, ws, config.gravity).shortfall;
+            if (plan.speed_shortfall > ws.max_speed_shortfall) reject(PlanLimit::kTorque, torque_failure);
           }
           if (!plan.feasible) continue;
         }
@@ -746,6 +781,28 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   if (torque_failure) return explained(*torque_failure, target, config);
   if (support_failure) return explained(*support_failure, target, config);
   return explained(leg_failure ? *leg_failure : *first_failure, target, config);
+}
+
+}  // namespace
+
+PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
+  config.check();
+  if (!target.displacement.allFinite() || !std::isfinite(target.yaw_rad)) {
+    throw std::invalid_argument("planJump: the target displacement and yaw must be finite");
+  }
+  PlannedJump plan = searchCandidates(target, config);
+  for (const PlannerConfig::GentlerThrust& gentler : config.gentler_thrusts) {
+    if (plan.feasible || plan.limit != PlanLimit::kTorque) break;
+    PlannerConfig relieved = config;
+    relieved.lift_off_rise_m = gentler.lift_off_rise_m;
+    relieved.thrust_duration_s = gentler.thrust_duration_s;
+    relieved.max_bezier_speed_mps = gentler.max_bezier_speed_mps;
+    relieved.max_explosive_acceleration = gentler.max_explosive_acceleration;
+    PlannedJump next = searchCandidates(target, relieved);
+    // Keep the first torque verdict when a gentler thrust fails for another reason.
+    if (next.feasible) plan = next;
+  }
+  return plan;
 }
 
 ReplannedJump replanJump(const JumpTarget& target, const PointState& lift_off_error, const PlannerConfig& config,

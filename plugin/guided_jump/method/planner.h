@@ -123,6 +123,12 @@ std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double 
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const LegWorkspace& workspace, const Eigen::Vector3d& gravity);
 
+// The lift-off speed shortfall thrustExceedsTorque compares with
+// workspace.max_speed_shortfall, m/s (NaN when workspace.mass is 0).
+double thrustSpeedShortfall(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
+                            const Eigen::Vector3d& polar_origin, const LegWorkspace& workspace,
+                            const Eigen::Vector3d& gravity);
+
 struct PlannerConfig {
   ActionRanges ranges = go1ActionRanges();
   Eigen::Vector3d gravity = standardGravity();  // must be along -z
@@ -162,6 +168,24 @@ struct PlannerConfig {
   double sideways_elevation_rad = 1.35;
   // Vertical (in-place) jumps: apex this far above max(lift-off, target) CoM height.
   double in_place_apex_rise_m = 0.10;
+
+  // When every candidate needs more torque than the motors have (PlanLimit::kTorque),
+  // the search runs again with each of these gentler thrusts in turn, and the first
+  // feasible plan wins. A DC motor's torque falls with joint speed, and near full
+  // extension a calf turns fastest for a given lift-off speed: a lower lift-off
+  // posture, a longer thrust and a lower explosive acceleration trade the
+  // extended push for torque at lower joint speeds (docs/method-planner.md, step 9).
+  struct GentlerThrust {
+    std::vector<double> lift_off_rise_m;
+    std::vector<double> thrust_duration_s;
+    double max_bezier_speed_mps = 1.25;
+    double max_explosive_acceleration = 20.0;
+  };
+  std::vector<GentlerThrust> gentler_thrusts{
+      {{0.0, -0.02, -0.04, -0.06, -0.08}, {0.45, 0.6, 0.8}, 1.25, 20.0},
+      {{0.02, 0.0, -0.02, -0.04, -0.06, -0.08}, {0.45, 0.6, 0.8}, 1.75, 12.0},
+      {{0.02, 0.0, -0.02, -0.04, -0.06}, {0.45, 0.6, 0.8}, 1.75, 8.0},
+  };
 
   std::optional<LegWorkspace> workspace;  // empty: legs and support not checked
   // With a workspace: the least share of the mean vertical foot force any
@@ -203,6 +227,10 @@ struct PlannedJump {
   Eigen::Vector3d apex = Eigen::Vector3d::Zero();
   double apex_time = 0.0;            // since lift-off, s
   double touchdown_yaw = 0.0;        // psi_lo + psi_dot * flight_time
+
+  // The lift-off speed the motors are predicted to miss by (thrustExceedsTorque),
+  // m/s; NaN when the torques were not checked (no workspace, or its mass 0).
+  double speed_shortfall = std::numeric_limits<double>::quiet_NaN();
 
   bool feasible = false;
   PlanLimit limit = PlanLimit::kNone;
