@@ -699,7 +699,8 @@ PlannedJump explained(const Rejection& r, const JumpTarget& target, const Planne
   return plan;
 }
 
-
+// One pass of the candidate search (docs/method-planner.md, step 10) over the
+// config's lists; planJump runs it again for each gentler thrust.
 PlannedJump searchCandidates(const JumpTarget& target, const PlannerConfig& config) {
   const ParameterRange& t_range = config.ranges[P::kThrustDuration];
   const Eigen::Vector3d polar_origin = config.polarOrigin();
@@ -798,8 +799,8 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
     relieved.thrust_duration_s = gentler.thrust_duration_s;
     relieved.max_bezier_speed_mps = gentler.max_bezier_speed_mps;
     relieved.max_explosive_acceleration = gentler.max_explosive_acceleration;
-    PlannedJump next = searchCandidates(target, relieved);
-    // Keep the first torque verdict when a gentler thrust fails for another reason.
+    // A gentler pass that finds nothing keeps the first pass's refusal as the report.
+    const PlannedJump next = searchCandidates(target, relieved);
     if (next.feasible) plan = next;
   }
   return plan;

@@ -27,7 +27,10 @@
 //   7. when leg geometry is given, the whole thrust path must keep all four
 //      stance feet reachable (feetReachable); a fixed candidate list of
 //      lift-off heights, offsets, thrust durations and yaw splits is searched
-//      in order, and the first feasible candidate wins.
+//      in order, and the first feasible candidate wins;
+//   8. when the motors' torque (thrustExceedsTorque) refuses every candidate, the
+//      search repeats with each of gentler_thrusts: lower lift-offs, longer
+//      thrusts, a lower explosive acceleration.
 #pragma once
 
 #include <Eigen/Core>
