@@ -35,13 +35,13 @@ nlohmann::json results(const std::string& dir) {
   return j;
 }
 
-// Runs a shipped scenario with the ballistic policy, expects exit 0 and one
-// jump, and returns that jump's results.json object (null after a failed
-// expectation); the output directory in *dir.
+// Runs a shipped scenario with the ballistic policy (and its trace), expects
+// exit 0 and one jump, and returns that jump's results.json object (null after
+// a failed expectation); the output directory in *dir.
 nlohmann::json onlyJump(const std::string& scenario, const std::string& out_name, std::string* dir = nullptr) {
   const std::string out = outDir(out_name);
   if (dir) *dir = out;
-  const CommandRun r = pronk("run " + source(scenario) + " --policy ballistic --out " + out);
+  const CommandRun r = pronk("run " + source(scenario) + " --policy ballistic --trace --out " + out);
   EXPECT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = results(out);
   EXPECT_TRUE(j.is_array() && j.size() == 1u) << r.output;
@@ -69,7 +69,45 @@ TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
   EXPECT_GT(jump["events"]["touchdown"].get<double>(), detected);
   EXPECT_GT(jump["reward"].get<double>(), 0.0);
   EXPECT_TRUE(std::filesystem::exists(dir + "/results.csv"));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/" + jump["trace"].get<std::string>()));
+  EXPECT_EQ(jump["trace"], "jump-000.csv");
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/jump-000.csv"));
+}
+
+TEST(JumpRuns, TracesAreWrittenOnlyWhenAsked) {
+  const std::string out = outDir("jump_no_trace");
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --out " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(out);
+  ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
+  EXPECT_EQ(j[0]["trace"], "");
+  EXPECT_FALSE(std::filesystem::exists(out + "/jump-000.csv"));
+  const CommandRun no_dir = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --trace");
+  EXPECT_NE(no_dir.status, 0);
+  EXPECT_NE(no_dir.output.find("--trace: needs --out DIR"), std::string::npos) << no_dir.output;
+}
+
+// results.json without the wall-clock figures, the one thing a rerun may change.
+nlohmann::json withoutWallTimes(nlohmann::json j) {
+  for (nlohmann::json& jump : j) jump.erase("wall_s");
+  return j;
+}
+
+TEST(JumpRuns, ResultsDoNotDependOnTheNumberOfJobs) {
+  // Landed, refused and failed jumps, with per-target step platforms (worlds
+  // reused across cases) and a trunk-mass sweep (worlds rebuilt): every number
+  // of results.json is the same with one worker thread as with two.
+  for (const std::string sweep : {"mix", "mass"}) {
+    const std::string one = outDir("jump_jobs_1_" + sweep), two = outDir("jump_jobs_2_" + sweep);
+    const std::string run = "run " + testScenario("go1_rollout_mix.xml") + " --policy ballistic --sweep " + sweep;
+    const CommandRun r1 = pronk(run + " --jobs 1 --out " + one);
+    const CommandRun r2 = pronk(run + " --jobs 2 --out " + two);
+    EXPECT_NE(r1.output.find("1 thread(s)"), std::string::npos) << r1.output;
+    EXPECT_NE(r2.output.find("2 thread(s)"), std::string::npos) << r2.output;
+    const nlohmann::json a = results(one), b = results(two);
+    ASSERT_TRUE(a.is_array() && a.size() >= 3u) << r1.output;
+    EXPECT_EQ(withoutWallTimes(a), withoutWallTimes(b)) << sweep;
+    EXPECT_EQ(r1.status, r2.status);
+  }
 }
 
 TEST(JumpRuns, Go1DiagonalWithATurnLandsWithinItsTolerance) {

@@ -16,8 +16,19 @@ namespace pronk {
 
 struct EpisodeOptions {
   double duration = 1.5;           // s
+  // A sample per tick; otherwise the first and the final sample only (the
+  // landing's inputs), and the loop allocates nothing for samples.
+  bool record_samples = true;
   bool record_body_poses = false;  // per-sample poses of every body (for video)
+  // > 0: end the episode once the robot has come to rest after a flight: after
+  // a touchdown every foot is down, the CoM slower than kRestSpeed and the
+  // trunk turning slower than kRestRate, all held for this long (s). What
+  // follows changes the landing by well under a millimetre (docs/performance.md).
+  double end_at_rest = 0;
 };
+
+inline constexpr double kRestSpeed = 0.05;  // m/s, CoM
+inline constexpr double kRestRate = 0.1;    // rad/s, trunk angular velocity
 
 struct EpisodeResult {
   Trace trace;

@@ -61,6 +61,11 @@ class World {
 
   // Back to the scenario's initial pose at rest, time 0.
   void reset();
+  // Another episode in the same Simbody system: a new start (base position and
+  // yaw, as PlatformSpec's) and terrain, then reset(). What the system is built
+  // from (robot, gains, damping, contact law) stays; the terrain is geometry
+  // that the contact and the probes read each step, so it may change.
+  void restart(const Vec3& base_position, double base_yaw, Terrain terrain);
   // Sets the initial pose explicitly: base position and yaw, joint positions.
   void resetTo(const Eigen::Vector3d& base_position, double base_yaw, const Eigen::VectorXd& q,
                bool place_on_ground);

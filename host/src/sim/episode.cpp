@@ -1,6 +1,7 @@
 #include "pronk/episode.h"
 
 #include <chrono>
+#include <cmath>
 
 namespace pronk {
 namespace {
@@ -33,20 +34,38 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
   const auto start = std::chrono::steady_clock::now();
   const long ticks = std::lround(options.duration / world.controlPeriod());
   bool was_airborne = false;
+  bool landed = false;      // a touchdown after a flight
+  double rest_since = NAN;  // when the robot last came to rest
   try {
     controller.reset(world.state());
     for (long k = 0; k < ticks; ++k) {
       const RobotState& s = world.state();
       const Eigen::VectorXd torque = controller.compute(s);
-      trace.samples.push_back(sampleOf(world, s, torque, options.record_body_poses));
+      if (options.record_samples || k == 0) trace.samples.push_back(sampleOf(world, s, torque, options.record_body_poses));
       if (!world.step(torque)) break;
       if (controller.finished()) break;
       // Contact changes of the whole robot: all feet off, then any foot back on.
       bool any_contact = false;
       for (uint8_t c : world.state().foot_in_contact) any_contact = any_contact || c;
       if (!any_contact && !was_airborne) trace.addEvent(world.time(), "lift_off");
-      if (any_contact && was_airborne) trace.addEvent(world.time(), "touchdown");
+      if (any_contact && was_airborne) {
+        trace.addEvent(world.time(), "touchdown");
+        landed = true;
+      }
       was_airborne = !any_contact;
+      if (options.end_at_rest > 0 && landed) {
+        const RobotState& now = world.state();
+        bool still = now.com_velocity.norm() < kRestSpeed && now.base_angular_velocity.norm() < kRestRate;
+        for (uint8_t c : now.foot_in_contact) still = still && c;
+        if (!still) {
+          rest_since = NAN;
+        } else if (std::isnan(rest_since)) {
+          rest_since = now.time;
+        } else if (now.time - rest_since >= options.end_at_rest - 1e-9) {
+          trace.addEvent(now.time, "at_rest");
+          break;
+        }
+      }
     }
   } catch (const Error& e) {
     result.failure = Failure{world.time(), "controller", e.what()};

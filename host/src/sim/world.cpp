@@ -303,6 +303,13 @@ void World::reset() {
           initialJointPositions(), p.on_ground);
 }
 
+void World::restart(const Vec3& base_position, double base_yaw, Terrain terrain) {
+  impl_->platform.base_position = base_position;
+  impl_->platform.base_yaw = base_yaw;
+  impl_->terrain = std::move(terrain);  // in place: the contact force holds a reference to it
+  reset();
+}
+
 void World::resetTo(const Eigen::Vector3d& base_position, double base_yaw, const Eigen::VectorXd& q,
                     bool place_on_ground) {
   Impl& w = *impl_;

@@ -1,4 +1,4 @@
-#include "jump_landing.h"
+#include "pronk/landing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-namespace pronk::cli {
+namespace pronk {
 namespace {
 
 double wrap(double a) { return std::remainder(a, 2 * M_PI); }
@@ -54,4 +54,4 @@ Landing landingOf(const Trace& trace, const TargetSpec& target) {
   return l;
 }
 
-}  // namespace pronk::cli
+}  // namespace pronk

@@ -9,7 +9,7 @@
 #include "pronk/scenario.h"
 #include "pronk/trace.h"
 
-namespace pronk::cli {
+namespace pronk {
 
 // A jump ends standing when every foot is down and the trunk's z axis is within
 // this angle of the vertical.
@@ -35,4 +35,4 @@ Landing landingOf(const Trace& trace, const TargetSpec& target);
 // Heading of a w-x-y-z quaternion (rad).
 double yawOf(const Eigen::Vector4d& q_wxyz);
 
-}  // namespace pronk::cli
+}  // namespace pronk

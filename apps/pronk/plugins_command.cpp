@@ -1,12 +1,24 @@
-// `pronk plugins` and `pronk validate`.
+// `pronk plugins`: the plugin search path, the libraries found, their factories and parameters.
 #include <cstdio>
 #include <iostream>
 
 #include "commands.h"
-#include "controller_factory.h"
-#include "pronk/world.h"
+#include "pronk/controller_factory.h"
 
 namespace pronk::cli {
+namespace {
+
+int pluginsCommand(const CommonOptions& common);
+
+}  // namespace
+
+Subcommand declarePlugins(CLI::App& app, const CommonOptions& common) {
+  CLI::App* sub = app.add_subcommand("plugins", "list loadable plugins, their ABI versions and factories");
+  return {sub, [&common] { return pluginsCommand(common); }};
+}
+
+namespace {
+
 
 int pluginsCommand(const CommonOptions& common) {
   PluginRegistry registry;
@@ -41,42 +53,5 @@ int pluginsCommand(const CommonOptions& common) {
   return kOk;
 }
 
-int validateCommand(const CommonOptions& common, const std::vector<std::string>& files) {
-  int failures = 0;
-  for (const std::string& file : files) {
-    try {
-      if (isScenarioPart(file)) {
-        // A file meant to be included: check what it holds, and its robot if it has one.
-        const Scenario part = loadScenarioPart(file);
-        std::string robot = "no platform";
-        if (!part.platform.urdf.empty()) {
-          World world(part);
-          robot = world.robot().name + ", " + std::to_string(world.jointCount()) + " joints, " +
-                  std::to_string(world.footCount()) + " feet";
-        }
-        std::printf("ok  %s (part: %s)\n", file.c_str(), robot.c_str());
-        continue;
-      }
-      const Scenario scenario = loadScenario(file);
-      PluginRegistry registry;
-      loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
-      World world(scenario);  // reads the URDF, checks the feet, legs and joint names
-      for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
-      if (!scenario.platform.controller.factory.empty()) checkController(scenario.platform.controller, registry);
-      std::string environment;
-      if (scenario.environment) {
-        const pronk_factory& env = findEnvironment(*scenario.environment, registry);
-        resolveParams(env, scenario.environment->params, scenario.environment->where);
-        environment = std::string(", environment ") + env.name;
-      }
-      std::printf("ok  %s (%s, %d joints, %d feet, %zu targets%s)\n", file.c_str(), world.robot().name.c_str(),
-                  world.jointCount(), world.footCount(), scenario.targets.size(), environment.c_str());
-    } catch (const Error& e) {
-      std::cerr << e.what() << "\n";
-      ++failures;
-    }
-  }
-  return failures ? kInputError : kOk;
-}
-
+}  // namespace
 }  // namespace pronk::cli

@@ -1,6 +1,9 @@
-// The `pronk` subcommands. Each returns the process exit status (see exit_codes).
+// The `pronk` subcommands: each file declares its own options (declareX) and
+// runs them; main() only chooses. Each returns the process exit status.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,8 +22,17 @@ struct CommonOptions {
   std::vector<std::string> plugin_paths;  // --plugin, repeatable
 };
 
-int pluginsCommand(const CommonOptions& common);
-int validateCommand(const CommonOptions& common, const std::vector<std::string>& files);
+// A declared subcommand and what runs it once the command line is parsed.
+struct Subcommand {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+// `common` must outlive the returned Subcommand.
+Subcommand declarePlugins(CLI::App& app, const CommonOptions& common);
+Subcommand declareValidate(CLI::App& app, const CommonOptions& common);
+Subcommand declareRun(CLI::App& app, const CommonOptions& common);
+Subcommand declareRender(CLI::App& app, const CommonOptions& common);
+Subcommand declareBench(CLI::App& app, const CommonOptions& common);
 
 struct RunOptions {
   std::string scenario;
@@ -37,23 +49,25 @@ struct RunOptions {
   std::string sweep;          // run this sweep's cases instead of the targets
   bool video_per_jump = false;  // one video file per jump instead of one for all
   std::vector<std::string> params;  // NAME=VALUE: the environment's parameters in a jump run, else the controller's
+  int jobs = 0;               // worker threads of a jump run; 0 = one per core
+  bool trace = false;         // a jump run writes each jump's trace CSV into --out
+  bool full_episodes = false; // a jump run does not end its episodes at rest
 };
-int runCommand(const CommonOptions& common, const RunOptions& options);
 
 // `pronk render`: the video alone. From a trace CSV of an earlier run (body
 // poses recomputed by forward kinematics, no simulation), or by simulating.
 struct RenderOptions : RunOptions {
   std::string trace;          // trace.csv from `pronk run --out`; "" = simulate
 };
-int renderCommand(const CommonOptions& common, const RenderOptions& options);
 
 struct BenchOptions {
   std::string scenario;       // "" = the built-in Go1 scenario
   int repeats = 3;
   bool sweep = false;         // the whole speed-vs-accuracy table
   bool video = false;         // end-to-end video throughput instead
+  bool rollout = false;       // the rollout engine's throughput on the region sweep instead
+  int jobs = 0;               // threads of the engine's multi-threaded row; 0 = one per core
 };
-int benchCommand(const CommonOptions& common, const BenchOptions& options);
 
 // Where the project's data (robots, scenarios) is: the source tree in a build,
 // or <prefix>/share/pronk when installed.

@@ -1,9 +1,10 @@
 // `pronk render`: an episode's video without the report.
 #include <cstdio>
+#include <memory>
 #include <iostream>
 
 #include "commands.h"
-#include "controller_factory.h"
+#include "pronk/controller_factory.h"
 #include "pronk/episode.h"
 #include "video_settings.h"
 
@@ -57,6 +58,26 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
   std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
               v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
   return kOk;
+}
+
+Subcommand declareRender(CLI::App& app, const CommonOptions& common) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* sub = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "
+                                                  "simulating it");
+  sub->add_option("scenario", o->scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  sub->add_option("-o,--output", o->video, "MP4 file to write")->required();
+  sub->add_option("--trace", o->trace, "trace.csv of an earlier `pronk run --out` (no simulation)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--controller", o->controller, "controller to use instead of the scenario's");
+  sub->add_option("--duration", o->duration, "episode length in s")->check(CLI::PositiveNumber);
+  sub->add_option("--speed", o->speed, "playback speed, e.g. 0.25")->check(CLI::PositiveNumber);
+  sub->add_option("--fps", o->fps, "frames per second")->check(CLI::Range(1.0, 240.0));
+  sub->add_option("--size", o->size, "WIDTHxHEIGHT, both even");
+  sub->add_option("--still", o->stills, "also save the frame at this simulated time as a PNG (repeatable)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--camera", o->camera, "camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
+
+  return {sub, [&common, o] { return renderCommand(common, *o); }};
 }
 
 }  // namespace pronk::cli

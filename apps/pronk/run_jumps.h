@@ -3,7 +3,7 @@
 #pragma once
 
 #include "commands.h"
-#include "pronk/episode.h"
+#include "pronk/rollout.h"
 #include "pronk/scenario.h"
 
 namespace pronk::cli {
@@ -18,8 +18,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
 // name); resolveParams then reports a bad name or value against the flag.
 std::vector<ParamSetting> withParamOptions(std::vector<ParamSetting> params, const RunOptions& options);
 
-// "ballistic": the environment's prior_action; otherwise a policy file.
-// Throws InputError for a file that cannot be used with `factory`.
-Policy makePolicy(const std::string& name, const pronk_factory& factory);
+// --jobs: the requested number of worker threads, or (0) the number of cores.
+int jobsOf(int requested);
 
 }  // namespace pronk::cli

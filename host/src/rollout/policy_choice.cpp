@@ -2,10 +2,10 @@
 // a policy file (docs/policy-format.md).
 #include <memory>
 
-#include "jump_runs.h"
 #include "pronk/policy.h"
+#include "pronk/rollout.h"
 
-namespace pronk::cli {
+namespace pronk {
 
 Policy makePolicy(const std::string& name, const pronk_factory& factory) {
   if (name == "ballistic") {
@@ -30,4 +30,4 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
   };
 }
 
-}  // namespace pronk::cli
+}  // namespace pronk

@@ -7,7 +7,7 @@
 #include "pronk/plugin_registry.h"
 #include "pronk/scenario.h"
 
-namespace pronk::cli {
+namespace pronk {
 
 // Loads the plugins on the search path: the library a scenario's controller
 // names by path (if any), then --plugin entries, PRONK_PLUGIN_PATH and the
@@ -28,4 +28,4 @@ std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const Plu
 // unknown name or a library other than the one it names.
 const pronk_factory& findEnvironment(const EnvironmentSpec& spec, const PluginRegistry& registry);
 
-}  // namespace pronk::cli
+}  // namespace pronk

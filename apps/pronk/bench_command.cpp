@@ -2,6 +2,7 @@
 // converged reference of the same model, measured side by side in one run.
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <iostream>
 
 #include "commands.h"
@@ -196,6 +197,26 @@ int benchCommand(const CommonOptions&, const BenchOptions& options) {
     }
   }
   return kOk;
+}
+
+Subcommand declareBench(CLI::App& app, const CommonOptions& common) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* sub = app.add_subcommand("bench", "simulation speed and accuracy: default settings vs a converged reference");
+  sub->add_option("--scenario", o->scenario, "scenario whose robot and settings to measure "
+                                                      "(default: scenarios/go1/stand.xml)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--repeats", o->repeats, "timed runs per setting (median reported)")
+      ->check(CLI::Range(1, 100));
+  sub->add_flag("--sweep", o->sweep, "measure the whole table of integrators and steps");
+  sub->add_flag("--video", o->video,
+                      "measure video instead: simulate the hop and encode 1280x720 H.264 at 30 fps, end to end");
+
+  sub->add_flag("--rollout", o->rollout,
+                "measure the rollout engine instead: the Go1 region sweep (40 targets) through one world per case "
+                "with full episodes and traces, and through the engine at 1 and N threads");
+  sub->add_option("--jobs", o->jobs, "threads of the engine's last row (default: one per core)")
+      ->check(CLI::Range(1, 1024));
+  return {sub, [&common, o] { return benchCommand(common, *o); }};
 }
 
 }  // namespace pronk::cli

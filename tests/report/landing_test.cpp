@@ -1,11 +1,11 @@
 // How the host classifies a jump's end state from its trace alone.
-#include "jump_landing.h"
+#include "pronk/landing.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
-namespace pronk::cli {
+namespace pronk {
 namespace {
 
 TraceSample sample(double time, const Eigen::Vector3d& position, const Eigen::Quaterniond& q,
@@ -78,4 +78,4 @@ TEST(JumpLanding, ATraceTooShortHasNoLanding) {
 }
 
 }  // namespace
-}  // namespace pronk::cli
+}  // namespace pronk

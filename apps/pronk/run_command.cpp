@@ -1,5 +1,6 @@
 // `pronk run`: simulate a scenario's episode and report what happened.
 #include <cstdio>
+#include <memory>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -7,8 +8,8 @@
 #include <Eigen/Geometry>
 
 #include "commands.h"
-#include "controller_factory.h"
-#include "jump_runs.h"
+#include "pronk/controller_factory.h"
+#include "run_jumps.h"
 #include "pronk/episode.h"
 #include "pronk/world.h"
 #include "render/episode_video.h"
@@ -128,6 +129,48 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
                 v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
   }
   return result.failure ? kEpisodeFailed : kOk;
+}
+
+Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* sub = app.add_subcommand("run", "simulate a scenario and print what happened");
+  sub->add_option("scenario", o->scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  sub->add_option("--out", o->out_dir, "directory for results.json and the trace CSV");
+  sub->add_option("--controller", o->controller, "controller to use instead of the scenario's (e.g. stand)");
+  sub->add_option("--duration", o->duration,
+                      "episode length in s (default: the scenario's <sim duration>, or in a jump run its "
+                      "<environment>'s duration parameter)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--video", o->video, "write an H.264 MP4 of the episode (off-screen, OSMesa)");
+  sub->add_option("--speed", o->speed, "video playback speed, e.g. 0.25 for slow motion")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--fps", o->fps, "video frames per second")->check(CLI::Range(1.0, 240.0));
+  sub->add_option("--size", o->size, "video size WIDTHxHEIGHT, both even (default 1280x720)");
+  sub->add_option("--still", o->stills, "also save the video frame at this simulated time (s) as a PNG "
+                                             "(repeatable)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--camera", o->camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
+  sub->add_option("--policy", o->policy,
+                      "jump to the scenario's targets with this policy: 'ballistic' (the environment's analytic "
+                      "planner) or a policy file (default: the scenario's <environment policy>)");
+  sub->add_option("--sweep", o->sweep, "run the cases of this <sweeps> entry instead of the targets");
+  sub->add_flag("--video-per-jump", o->video_per_jump, "one video file per jump (NAME-000.mp4 ...) instead of one");
+  sub->add_option("--param", o->params,
+                      "NAME=VALUE: set a parameter of the scenario's <environment> in a jump run, of its controller "
+                      "otherwise, over the file's (repeatable; e.g. --param motor=dc)")
+      ->check([](const std::string& s) {
+        return s.find('=') == std::string::npos || s.front() == '=' ? std::string("expected NAME=VALUE") : std::string();
+      });
+
+  sub->add_option("--jobs", o->jobs, "worker threads of a jump run, one World each (default: one per core); "
+                                     "results do not depend on it")
+      ->check(CLI::Range(1, 1024));
+  sub->add_flag("--full-episodes", o->full_episodes,
+                "a jump run simulates every episode to the environment's end instead of stopping once the robot "
+                "has been at rest for 0.2 s after landing");
+  sub->add_flag("--trace", o->trace, "a jump run also writes each jump's trace (jump-NNN.csv, a sample per tick) "
+                                     "into --out");
+  return {sub, [&common, o] { return runCommand(common, *o); }};
 }
 
 }  // namespace pronk::cli

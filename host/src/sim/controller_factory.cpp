@@ -1,9 +1,9 @@
-#include "controller_factory.h"
+#include "pronk/controller_factory.h"
 
 #include <algorithm>
 #include <filesystem>
 
-namespace pronk::cli {
+namespace pronk {
 namespace {
 
 bool isBuiltin(const ControllerSpec& spec) {
@@ -85,4 +85,4 @@ std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const Plu
   return std::make_unique<PluginController>(factory, registry.libraryOf(&factory)->path(), params, world, trace);
 }
 
-}  // namespace pronk::cli
+}  // namespace pronk

@@ -1,0 +1,40 @@
+// pronk: run quadruped jump scenarios on the Simbody host.
+#include <iostream>
+
+#include "commands.h"
+#include "pronk/error.h"
+
+int main(int argc, char** argv) {
+  using namespace pronk::cli;
+  CLI::App app{"pronk: learned, precise, omnidirectional jumps of legged robots in simulation"};
+  app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 success, 1 internal error, 2 usage error, 3 bad input (scenario, URDF, plugin),\n"
+      "4 an episode failed (non-foot contact, divergence, controller error).");
+  CommonOptions common;
+  app.add_option("--plugin", common.plugin_paths,
+                 "plugin library or directory, searched before PRONK_PLUGIN_PATH and the install directory "
+                 "(repeatable)");
+
+  const std::vector<Subcommand> commands = {declarePlugins(app, common), declareValidate(app, common),
+                                            declareRun(app, common), declareRender(app, common),
+                                            declareBench(app, common)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kUsageError;
+  }
+  try {
+    for (const Subcommand& c : commands)
+      if (*c.app) return c.run();
+  } catch (const pronk::Error& e) {
+    std::cerr << "pronk: " << e.what() << "\n";
+    return kInputError;
+  } catch (const std::exception& e) {
+    std::cerr << "pronk: internal error: " << e.what() << "\n";
+    return kInternalError;
+  }
+  return kUsageError;
+}

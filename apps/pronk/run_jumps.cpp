@@ -1,0 +1,193 @@
+// `pronk run SCENARIO --policy ...`: one episode of the scenario's environment
+// per target (or per sweep case) through the rollout engine; the sinks print
+// the table, write the results files and traces, and film the video.
+#include "run_jumps.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <thread>
+#include <Eigen/Geometry>
+
+#include "progress.h"
+#include "pronk/controller_factory.h"
+#include "pronk/report.h"
+#include "render/episode_video.h"
+#include "video_settings.h"
+
+namespace pronk::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The world-frame target marker, planned arc and predicted landing of a jump for the video.
+render::SceneMarkers jumpMarkers(const EpisodeRecord& r, const Landing& landing, const Terrain& terrain,
+                                const Eigen::Vector3d& gravity) {
+  render::SceneMarkers m;
+  const Trace& trace = r.result.episode.trace;
+  const TraceSample& s0 = trace.samples.front();
+  const double yaw0 = yawOf(s0.base_quaternion);
+  const Eigen::AngleAxisd heading(yaw0, Eigen::Vector3d::UnitZ());
+  const TargetSpec& t = r.episode.target;
+  const auto ground = terrain.topAt(s0.base_position.x(), s0.base_position.y());
+  const double surface = ground ? ground->height : 0.0;
+  const Eigen::Vector3d start_ground(s0.com_position.x(), s0.com_position.y(), surface);
+  // The target marks where the trunk should come to rest, on the landing surface.
+  const Eigen::Vector3d trunk_ground(s0.base_position.x(), s0.base_position.y(), surface);
+  m.target = trunk_ground + heading * Eigen::Vector3d(t.x, t.y, t.z);
+  m.target_yaw = yaw0 + t.yaw;
+  m.landing_error = landing.error_xy;
+  const double* x = trace.findMetric("planned_lift_off_x");
+  const double* px = trace.findMetric("predicted_landing_x");
+  if (x && px) {
+    const double* y = trace.findMetric("planned_lift_off_y");
+    const double* z = trace.findMetric("planned_lift_off_z");
+    const double* vx = trace.findMetric("planned_lift_off_vx");
+    const double* vy = trace.findMetric("planned_lift_off_vy");
+    const double* vz = trace.findMetric("planned_lift_off_vz");
+    const double* tf = trace.findMetric("planned_flight_time");
+    if (y && z && vx && vy && vz && tf && std::isfinite(*tf)) {
+      const Eigen::Vector3d p(*x, *y, *z), v(*vx, *vy, *vz), g = gravity;
+      for (int i = 0; i <= 40; ++i) {
+        const double tt = *tf * i / 40;
+        m.planned_arc.push_back(start_ground + heading * (p + v * tt) + 0.5 * g * tt * tt);
+      }
+      m.predicted_landing = m.planned_arc.back();
+      m.predicted_landing->z() = surface + t.z;
+    }
+  }
+  return m;
+}
+
+// --duration sets the episode length, which the environment's `duration`
+// parameter owns in a jump run (resolveParams refuses it, naming the flag, for
+// an environment without one or a value out of its range).
+std::vector<ParamSetting> withDurationOption(std::vector<ParamSetting> params, const RunOptions& options) {
+  if (options.duration <= 0) return params;
+  char value[32];
+  std::snprintf(value, sizeof value, "%.17g", options.duration);
+  setParam(params, {"duration", value, SourceLocation{"--duration", 0}});
+  return params;
+}
+
+}  // namespace
+
+std::vector<ParamSetting> withParamOptions(std::vector<ParamSetting> params, const RunOptions& options) {
+  for (const std::string& option : options.params) {
+    const size_t eq = option.find('=');  // main() checked there is one, after a name
+    setParam(params, {option.substr(0, eq), option.substr(eq + 1), SourceLocation{"--param", 0}});
+  }
+  return params;
+}
+
+bool runsJumps(const Scenario& scenario, const RunOptions& options) {
+  return scenario.environment && options.controller.empty();
+}
+
+int jobsOf(int requested) {
+  if (requested > 0) return requested;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+int runJumps(const CommonOptions& common, const RunOptions& options, const Scenario& scenario) {
+  const EnvironmentSpec& spec = *scenario.environment;
+  const std::string policy_name = options.policy.empty() ? spec.policy : options.policy;
+  if (policy_name.empty()) {
+    throw InputError(spec.where, "<environment>: no policy: give --policy ballistic or --policy FILE (or the "
+                                 "element's policy attribute)");
+  }
+  PluginRegistry registry;
+  ControllerSpec as_controller{spec.factory, spec.plugin, spec.params, spec.where};
+  loadPlugins(registry, common.plugin_paths, &as_controller);
+  RolloutSetup setup =
+      environmentSetup(scenario, registry, withDurationOption(withParamOptions({}, options), options), policy_name);
+
+  const std::vector<EpisodeCase> cases = options.sweep.empty() ? targetCases(scenario) : sweepCases(scenario, options.sweep);
+  const render::VideoOptions video = videoOptions(scenario, options);
+  if (!video.path.empty()) checkWritable(video.path);
+  if (!options.out_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(options.out_dir, ec);
+    if (ec) throw Error("--out " + options.out_dir + ": cannot create the directory: " + ec.message());
+  }
+  if (options.trace && options.out_dir.empty()) throw Error("--trace: needs --out DIR for the trace files");
+
+  RolloutOptions rollout;
+  rollout.threads = std::min<int>(jobsOf(options.jobs), static_cast<int>(std::max<size_t>(cases.size(), 1)));
+  rollout.record_samples = options.trace || !video.path.empty();
+  rollout.record_body_poses = !video.path.empty();
+  if (options.full_episodes) rollout.end_at_rest = 0;
+  const std::string factory_name = setup.factory->name, origin = setup.origin;
+  RolloutPool pool(std::move(setup), rollout);
+  for (const std::string& w : pool.robot().warnings) std::cerr << "warning: " << w << "\n";
+
+  std::printf("scenario    %s\n", options.scenario.c_str());
+  std::printf("environment %s (%s), policy %s, %zu jump(s)%s, %d thread(s)\n", factory_name.c_str(), origin.c_str(),
+              policy_name.c_str(), cases.size(), options.sweep.empty() ? "" : (", sweep " + options.sweep).c_str(),
+              pool.threads());
+  printJumpTableHeader(stdout);
+  std::fflush(stdout);
+
+  std::unique_ptr<render::EpisodeVideo> movie;
+  JumpStatistics stats;
+  JumpResultsFiles files;
+  Progress progress("jump", cases.size());
+  const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);
+  const auto start = std::chrono::steady_clock::now();
+  pool.run(cases, [&](EpisodeRecord& r) {
+    const JumpOutcome outcome = judgeJump(r);
+    printJumpRow(stdout, r, outcome);
+    std::fflush(stdout);
+    stats.add(r, outcome);
+    const Trace& trace = r.result.episode.trace;
+    std::string trace_file;
+    if (options.trace && !trace.samples.empty()) {
+      char name[32];
+      std::snprintf(name, sizeof name, "jump-%03zu.csv", r.index);
+      trace_file = name;
+      writeTraceCsv(trace, (fs::path(options.out_dir) / name).string());
+    }
+    files.add(r, outcome, trace_file);
+    if (!video.path.empty() && !trace.samples.empty()) {
+      const Scenario s = applyCase(scenario, r.episode);  // it ran, so it applies
+      const Terrain terrain(s.ground, s.ground_height, s.terrain);
+      const render::SceneMarkers markers = jumpMarkers(r, outcome.landing, terrain, gravity);
+      if (options.video_per_jump) {
+        render::VideoOptions one = video;
+        char suffix[32];
+        std::snprintf(suffix, sizeof suffix, "-%03zu", r.index);
+        one.path = (fs::path(video.path).parent_path() / (fs::path(video.path).stem().string() + suffix +
+                                                           fs::path(video.path).extension().string()))
+                       .string();
+        const render::VideoSummary v = render::renderEpisodeVideo(trace, pool.robot(), terrain, markers, one, &std::cerr);
+        std::printf("video %s: %d frames, %.2f s\n", v.path.c_str(), v.frames, v.duration_s);
+      } else {
+        if (!movie) movie = std::make_unique<render::EpisodeVideo>(video, &std::cerr);
+        movie->add(trace, pool.robot(), terrain, markers, r.episode.label);
+      }
+    }
+    r.result.episode.trace.samples = {};  // keep memory bounded over long sweeps
+    progress.done(stats.jumps);
+  });
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printJumpSummary(stdout, stats, wall);
+
+  if (!options.out_dir.empty()) {
+    files.write(options.out_dir);
+    std::printf("wrote %s, %s%s\n", (fs::path(options.out_dir) / "results.json").c_str(),
+                (fs::path(options.out_dir) / "results.csv").c_str(), options.trace ? " and a trace per jump" : "");
+  }
+  if (movie) {
+    const render::VideoSummary v = movie->finish();
+    for (const std::string& w : v.warnings) std::cerr << "warning: " << w << "\n";
+    for (const std::string& png : v.stills) std::printf("still %s\n", png.c_str());
+    std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
+                v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
+  }
+  return stats.failed + stats.rejected + stats.missed > 0 ? kEpisodeFailed : kOk;
+}
+
+}  // namespace pronk::cli

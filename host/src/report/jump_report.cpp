@@ -1,0 +1,239 @@
+// Jump reports from rollout records: status, statistics, the console table and
+// the results files (pronk/report.h, docs/results-format.md).
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <filesystem>
+
+#include "pronk/report.h"
+
+namespace pronk {
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+// A metric of the trace, NaN when absent or not finite (JSON null, empty CSV cell).
+double metricOrNaN(const Trace& trace, const char* name) {
+  const double* v = trace.findMetric(name);
+  return v && std::isfinite(*v) ? *v : NAN;
+}
+
+const TraceEvent* event(const Trace& trace, const char* name) { return trace.findEvent(name); }
+
+std::string statusOf(const EpisodeRecord& r, const Landing& landing) {
+  if (r.setup_error) return "failed";
+  if (r.result.rejected) return "rejected";
+  if (r.result.episode.failure || !landing.end_failure.empty()) return "failed";
+  const TargetSpec& t = r.episode.target;
+  if ((t.tolerance_xy && !(landing.error_xy <= *t.tolerance_xy)) ||
+      (t.tolerance_yaw && !(landing.error_yaw <= *t.tolerance_yaw))) {
+    return "missed";
+  }
+  return "ok";
+}
+
+std::string reasonOf(const EpisodeRecord& r, const JumpOutcome& o) {
+  if (r.setup_error) return "setup: " + *r.setup_error;
+  if (r.result.rejected) return *r.result.rejected;
+  if (r.result.episode.failure) return r.result.episode.failure->reason + ": " + r.result.episode.failure->detail;
+  if (!o.landing.end_failure.empty()) return o.landing.end_failure;
+  if (o.status == "missed") {
+    char text[160];
+    std::snprintf(text, sizeof text, "error %.1f cm / %.1f deg beyond the tolerance %.1f cm / %.1f deg",
+                  100 * o.landing.error_xy, o.landing.error_yaw * kDeg,
+                  100 * r.episode.target.tolerance_xy.value_or(INFINITY),
+                  r.episode.target.tolerance_yaw.value_or(INFINITY) * kDeg);
+    return text;
+  }
+  return "";
+}
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string csvCell(double v) {
+  if (!std::isfinite(v)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+std::string timePair(const Trace& trace, const char* planned, const char* actual_event, const char* actual_metric) {
+  const double* p = trace.findMetric(planned);
+  double a = NAN;
+  if (actual_event && event(trace, actual_event)) a = event(trace, actual_event)->time;
+  if (actual_metric && trace.findMetric(actual_metric)) a = *trace.findMetric(actual_metric);
+  char text[32];
+  std::snprintf(text, sizeof text, "%5.3f/%5.3f", p ? *p : NAN, a);
+  return text;
+}
+
+double simulatedOf(const Trace& trace) { return trace.samples.empty() ? 0.0 : trace.samples.back().time; }
+
+}  // namespace
+
+JumpOutcome judgeJump(const EpisodeRecord& record) {
+  JumpOutcome o;
+  o.landing = landingOf(record.result.episode.trace, record.episode.target);
+  o.status = statusOf(record, o.landing);
+  o.reason = reasonOf(record, o);
+  o.ran = !record.setup_error && !record.result.rejected;
+  return o;
+}
+
+void JumpStatistics::add(const EpisodeRecord& r, const JumpOutcome& o) {
+  ++jumps;
+  if (o.ran) ++ran;
+  wall_s += r.result.episode.wall_seconds;
+  simulated_s += simulatedOf(r.result.episode.trace);
+  if (o.status == "failed") ++failed;
+  if (o.status == "rejected") ++rejected;
+  if (o.status == "missed") ++missed;
+  if (o.status == "ok" || o.status == "missed") {
+    errors.push_back(o.landing.error_xy);
+    yaw_errors_deg.push_back(o.landing.error_yaw * kDeg);
+    if (o.landing.standing) ++standing;
+    if (const double* rest = r.result.episode.trace.findMetric("rest_time"); rest && std::isfinite(*rest)) {
+      rest_times.push_back(*rest);
+    }
+  }
+}
+
+void printJumpTableHeader(std::FILE* out) {
+  std::fprintf(out, "\n| %3s | %-25s | %-25s | %6s | %5s | %-11s | %-11s | %-11s | %-11s | %-8s | %5s |\n", "#",
+               "target x y z [m] yaw[deg]", "landing x y z [m] yaw[deg]", "err cm", "yaw ", "lift-off s", "apex s",
+               "touchdown s", "pred. xy m", "status", "reward");
+  std::fprintf(out, "|-----|---------------------------|---------------------------|--------|-------|-------------|"
+                    "-------------|-------------|-------------|----------|-------|\n");
+}
+
+void printJumpRow(std::FILE* out, const EpisodeRecord& r, const JumpOutcome& o) {
+  const Trace& trace = r.result.episode.trace;
+  const TargetSpec& t = r.episode.target;
+  const Landing& l = o.landing;
+  const double* px = trace.findMetric("predicted_landing_x");
+  const double* py = trace.findMetric("predicted_landing_y");
+  std::fprintf(out,
+               "| %3zu | %5.2f %5.2f %5.2f %6.1f | %5.2f %5.2f %5.2f %6.1f | %6.1f | %5.1f | %s | %s | %s | %5.2f %5.2f | "
+               "%-8s | %5.3f |\n",
+               r.index, t.x, t.y, t.z, t.yaw * kDeg, l.displacement.x(), l.displacement.y(), l.displacement.z(),
+               l.yaw * kDeg, 100 * l.error_xy, l.error_yaw * kDeg,
+               timePair(trace, "planned_lift_off_time", "lift_off", nullptr).c_str(),
+               timePair(trace, "planned_apex_time", nullptr, "apex_time").c_str(),
+               timePair(trace, "planned_touchdown_time", "touchdown", nullptr).c_str(), px ? *px : NAN, py ? *py : NAN,
+               o.status.c_str(), r.result.reward);
+  if (!o.reason.empty()) std::fprintf(out, "|     |   %s\n", o.reason.c_str());
+}
+
+void printJumpSummary(std::FILE* out, const JumpStatistics& s, double wall_clock_s) {
+  const size_t landed = s.landed();
+  std::fprintf(out, "\n%zu jump(s): %zu landed (%d missed their tolerance), %d rejected before running, %d failed\n",
+               s.jumps, landed, s.missed, s.rejected, s.failed);
+  if (landed > 0) {
+    std::fprintf(out,
+                 "landing error: median %.1f cm, 90th percentile %.1f cm, max %.1f cm; yaw error median %.1f deg\n",
+                 100 * median(s.errors), 100 * percentile(s.errors, 0.9), 100 * percentile(s.errors, 1.0),
+                 median(s.yaw_errors_deg));
+    std::fprintf(out, "ended standing: %d of %zu; time to rest (CoM < 0.05 m/s): median %.2f s\n", s.standing, landed,
+                 median(s.rest_times));
+  }
+  if (s.ran > 0 && s.wall_s > 0) {
+    std::fprintf(out, "simulated %.1f s in %.1f s of episode wall time (%.1fx real time per episode)", s.simulated_s,
+                 s.wall_s, s.simulated_s / s.wall_s);
+    if (wall_clock_s > 0) std::fprintf(out, "; %.2f jumps/s over the run's %.1f s", s.jumps / wall_clock_s, wall_clock_s);
+    std::fprintf(out, "\n");
+  } else {
+    std::fprintf(out, "simulated nothing\n");
+  }
+}
+
+void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const std::string& trace_file) {
+  const Trace& trace = r.result.episode.trace;
+  const TargetSpec& t = r.episode.target;
+  const Landing& l = o.landing;
+  nlohmann::json j;
+  j["case"] = r.episode.label;
+  j["target"] = {{"name", t.name}, {"x", t.x}, {"y", t.y}, {"z", t.z}, {"yaw", t.yaw}, {"roll", t.roll}, {"pitch", t.pitch}};
+  j["landing"] = {{"x", number(l.displacement.x())},
+                  {"y", number(l.displacement.y())},
+                  {"z", number(l.displacement.z())},
+                  {"yaw", number(l.yaw)}};
+  j["error_xy"] = number(l.error_xy);
+  j["error_yaw_deg"] = number(l.error_yaw * kDeg);
+  j["status"] = o.status;
+  j["failed"] = o.status == "failed";
+  j["rejected"] = o.status == "rejected";
+  j["failure_reason"] = o.reason;
+  j["ended_standing"] = l.standing && o.status != "failed";
+  j["reward"] = r.result.reward;
+  j["observation"] = r.result.observation;
+  j["action"] = r.result.action;
+  nlohmann::json penalties = nlohmann::json::object(), metrics = nlohmann::json::object();
+  for (const TraceMetric& m : trace.metrics) {
+    if (m.name.rfind("penalty_", 0) == 0) penalties[m.name.substr(8)] = number(m.value);
+    else metrics[m.name] = number(m.value);
+  }
+  j["penalties"] = penalties;
+  j["metrics"] = metrics;
+  nlohmann::json events = nlohmann::json::object();
+  for (const char* name : {"lift_off", "touchdown"}) {
+    const TraceEvent* e = event(trace, name);
+    events[name] = e ? nlohmann::json(e->time) : nlohmann::json(nullptr);
+  }
+  for (const char* name : {"planned_lift_off_time", "planned_apex_time", "planned_touchdown_time", "apex_time",
+                           "rest_time"}) {
+    events[name] = number(metricOrNaN(trace, name));
+  }
+  j["events"] = events;
+  j["event_log"] = nlohmann::json::array();
+  for (const TraceEvent& e : trace.events) j["event_log"].push_back({{"time", e.time}, {"name", e.name}, {"detail", e.detail}});
+  j["simulated_s"] = simulatedOf(trace);
+  j["wall_s"] = r.result.episode.wall_seconds;
+  j["trace"] = trace_file;  // "" when no trace was written (--trace)
+  json_.push_back(std::move(j));
+
+  auto ev = [&](const char* name) { return csvCell(event(trace, name) ? event(trace, name)->time : NAN); };
+  auto m = [&](const char* name) { return csvCell(metricOrNaN(trace, name)); };
+  std::string reason = o.reason;
+  for (char& c : reason)
+    if (c == '"') c = '\'';
+  std::string row = '"' + r.episode.label + "\",";
+  for (double v : {t.x, t.y, t.z, t.yaw, l.displacement.x(), l.displacement.y(), l.displacement.z(), l.yaw, l.error_xy,
+                   l.error_yaw * kDeg}) {
+    row += csvCell(v) + ',';
+  }
+  row += o.status + ',' + csvCell(r.result.reward) + ',' + ev("lift_off") + ',' + m("planned_lift_off_time") + ',' +
+         m("apex_time") + ',' + m("planned_apex_time") + ',' + ev("touchdown") + ',' + m("planned_touchdown_time") +
+         ',' + m("predicted_landing_x") + ',' + m("predicted_landing_y") + ',' + m("rest_time") + ',' +
+         (l.standing && o.status != "failed" ? "1" : "0") + ",\"" + reason + "\"\n";
+  csv_ += row;
+}
+
+void JumpResultsFiles::write(const std::string& dir) const {
+  namespace fs = std::filesystem;
+  const std::string json_path = (fs::path(dir) / "results.json").string();
+  {
+    std::ofstream out(json_path);
+    if (!(out << json_.dump(2) << "\n")) throw Error(json_path + ": cannot write");
+  }
+  const std::string csv_path = (fs::path(dir) / "results.csv").string();
+  std::ofstream out(csv_path);
+  out << "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,error_yaw_deg,"
+         "status,reward,lift_off,planned_lift_off,apex,planned_apex,touchdown,planned_touchdown,predicted_landing_x,"
+         "predicted_landing_y,rest_time,ended_standing,reason\n"
+      << csv_;
+  if (!out) throw Error(csv_path + ": cannot write");
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(std::ceil(p * v.size())) - (p > 0 ? 1 : 0))];
+}
+
+}  // namespace pronk

@@ -1,0 +1,156 @@
+// RolloutPool: worker threads, one World each, cases handed out by index and
+// records delivered in case order (pronk/rollout.h).
+#include <condition_variable>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "pronk/controller_factory.h"
+#include "pronk/rollout.h"
+#include "pronk/world.h"
+
+namespace pronk {
+
+struct RolloutPool::Worker {
+  std::unique_ptr<World> world;
+  // The case assignments the world was built with: applyCase changes nothing
+  // else of the robot or the simulation, only the terrain and the start pose.
+  std::vector<std::pair<std::string, double>> assignments;
+};
+
+RolloutPool::RolloutPool(RolloutSetup setup, RolloutOptions options)
+    : setup_(std::move(setup)), options_(options) {
+  if (!setup_.factory) throw Error("RolloutPool: no environment factory");
+  if (!setup_.policy) throw Error("RolloutPool: no policy");
+  if (options_.threads < 1) options_.threads = 1;
+  if (options_.record_body_poses) options_.record_samples = true;
+  UrdfOptions urdf;
+  urdf.package_paths = setup_.scenario.platform.package_paths;
+  robot_ = std::make_shared<const RobotDescription>(loadUrdf(setup_.scenario.platform.urdf, urdf));
+  for (int i = 0; i < options_.threads; ++i) workers_.push_back(std::make_unique<Worker>());
+}
+
+RolloutPool::~RolloutPool() = default;
+
+EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCase& episode) {
+  EpisodeRecord record;
+  record.index = index;
+  record.episode = episode;
+  Scenario s;
+  try {
+    s = applyCase(setup_.scenario, episode);
+  } catch (const InputError& e) {
+    record.setup_error = e.what();
+    record.result.task = {episode.target.x, episode.target.y, episode.target.z,
+                          episode.target.yaw, episode.target.roll, episode.target.pitch};
+    return record;
+  }
+  Terrain terrain(s.ground, s.ground_height, s.terrain);
+  if (!options_.reuse_worlds || !worker.world || worker.assignments != episode.assignments) {
+    worker.world = std::make_unique<World>(*robot_, s.platform, s.sim, terrain);
+    worker.assignments = episode.assignments;
+    ++worlds_built_;
+  } else {
+    worker.world->restart(s.platform.base_position, s.platform.base_yaw, std::move(terrain));
+  }
+  EpisodeOptions options;
+  options.duration = options_.max_episode_s;
+  options.record_samples = options_.record_samples;
+  options.record_body_poses = options_.record_body_poses;
+  options.end_at_rest = options_.end_at_rest;
+  const TargetSpec& t = episode.target;
+  record.result = runEnvironmentEpisode(*worker.world, *setup_.factory, setup_.origin, setup_.params,
+                                        {t.x, t.y, t.z, t.yaw, t.roll, t.pitch}, index, setup_.policy, options);
+  return record;
+}
+
+size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const EpisodeSink& sink) {
+  stop_ = false;
+  std::mutex mutex;
+  std::condition_variable ready;
+  std::map<size_t, EpisodeRecord> finished;   // out of order, until their turn
+  std::map<size_t, std::exception_ptr> errors;
+  size_t next_case = 0;
+  const size_t threads = std::min(workers_.size(), std::max<size_t>(cases.size(), 1));
+
+  auto work = [&](Worker& worker) {
+    for (;;) {
+      size_t index;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (stop_ || next_case >= cases.size()) return;
+        index = next_case++;
+      }
+      try {
+        EpisodeRecord record = runCase(worker, index, cases[index]);
+        std::lock_guard<std::mutex> lock(mutex);
+        finished.emplace(index, std::move(record));
+      } catch (...) {
+        // A broken world (an exception out of the simulation itself) is not
+        // reused; the error reaches the caller in case order.
+        worker.world.reset();
+        std::lock_guard<std::mutex> lock(mutex);
+        errors.emplace(index, std::current_exception());
+      }
+      ready.notify_all();
+    }
+  };
+
+  // The workers simulate; the calling thread only delivers, so that a slow sink
+  // (a video encoder) overlaps the simulation.
+  std::vector<std::thread> pool;
+  for (size_t w = 0; w < threads; ++w) pool.emplace_back(work, std::ref(*workers_[w]));
+  std::exception_ptr failure;
+  size_t delivered = 0;
+  for (; delivered < cases.size(); ++delivered) {
+    EpisodeRecord record;
+    {
+      std::unique_lock<std::mutex> lock(mutex);
+      ready.wait(lock, [&] {
+        return finished.count(delivered) || errors.count(delivered) || (stop_ && delivered >= next_case);
+      });
+      if (auto e = errors.find(delivered); e != errors.end()) {
+        failure = e->second;
+        stop_ = true;
+        break;
+      }
+      auto it = finished.find(delivered);
+      if (it == finished.end()) break;  // stopped before this case was handed out
+      record = std::move(it->second);
+      finished.erase(it);
+    }
+    try {
+      sink(record);
+    } catch (...) {
+      failure = std::current_exception();
+      stop_ = true;
+      ++delivered;
+      break;
+    }
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    stop_ = stop_ || delivered < cases.size();
+  }
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return delivered;
+}
+
+RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& registry,
+                              const std::vector<ParamSetting>& overrides, const std::string& policy_name) {
+  if (!scenario.environment) throw InputError({scenario.file, 0}, "the scenario has no <environment>");
+  const EnvironmentSpec& spec = *scenario.environment;
+  RolloutSetup setup;
+  setup.scenario = scenario;
+  setup.factory = &findEnvironment(spec, registry);
+  setup.origin = registry.libraryOf(setup.factory)->path();
+  std::vector<ParamSetting> params = spec.params;
+  for (const ParamSetting& p : overrides) setParam(params, p);
+  setup.params = resolveParams(*setup.factory, params, spec.where);
+  setup.policy = makePolicy(policy_name, *setup.factory);
+  return setup;
+}
+
+}  // namespace pronk
