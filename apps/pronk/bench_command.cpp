@@ -5,6 +5,7 @@
 #include <memory>
 #include <iostream>
 
+#include "bench_rollout.h"
 #include "commands.h"
 #include "pronk/controller.h"
 #include "pronk/episode.h"
@@ -138,8 +139,9 @@ int videoBench(const BenchOptions& options) {
   return kOk;
 }
 
-int benchCommand(const CommonOptions&, const BenchOptions& options) {
+int benchCommand(const CommonOptions& common, const BenchOptions& options) {
   if (options.video) return videoBench(options);
+  if (options.rollout) return rolloutBench(common, options);
   const std::string path = options.scenario.empty() ? dataDirectory() + "/scenarios/go1/stand.xml" : options.scenario;
   const Scenario scenario = loadScenario(path);
   const SimSpec defaults = scenario.sim;

@@ -107,6 +107,18 @@ struct World::Impl {
   std::unique_ptr<SimTK::Integrator> integ;
   bool adaptive = false;  // error-controlled integrator
   mutable SimTK::State scratch;  // for kinematics at arbitrary joint positions
+  // The joint positions the scratch state is realized at with the trunk at the
+  // origin (empty: posed otherwise). A controller asks for a foot's position
+  // and then its Jacobian at the same q; the second realize is skipped.
+  mutable Eigen::VectorXd scratch_q;
+  // Realizes the scratch state at q with the trunk at the origin, unless it is.
+  void poseScratchAtOrigin(const Eigen::VectorXd& q) const {
+    if (scratch_q.size() == q.size() && scratch_q == q) return;
+    for (size_t i = 0; i < q_of.size(); ++i) scratch.updQ()[q_of[i]] = q(static_cast<Eigen::Index>(i));
+    mb.root().setQToFitTransform(scratch, SimTK::Transform());
+    system.realize(scratch, SimTK::Stage::Position);
+    scratch_q = q;
+  }
 
   // Controller order.
   std::vector<int> joint_of;               // controller joint -> description joint
@@ -260,6 +272,7 @@ World::World(const RobotDescription& robot, const PlatformSpec& platform, const 
     }
   }
   w.scratch = w.system.getDefaultState();
+  w.scratch_q.resize(0);
   reset();
 }
 
@@ -520,16 +533,13 @@ Eigen::VectorXd World::footForcesToJointTorques(const std::vector<int>& feet,
 
 Eigen::Vector3d World::footPositionBase(int foot, const Eigen::VectorXd& q) const {
   const Impl& w = *impl_;
-  SimTK::State& s = w.scratch;
-  for (int i = 0; i < jointCount(); ++i) s.updQ()[w.q_of[i]] = q(i);
-  w.mb.root().setQToFitTransform(s, SimTK::Transform());
-  w.system.realize(s, SimTK::Stage::Position);
-  return toEigen(w.matter.getMobilizedBody(w.feet[foot].body).getBodyTransform(s) * w.feet[foot].center_body);
+  w.poseScratchAtOrigin(q);
+  return toEigen(w.matter.getMobilizedBody(w.feet[foot].body).getBodyTransform(w.scratch) * w.feet[foot].center_body);
 }
 
 Eigen::MatrixXd World::legJacobianBase(int foot, const Eigen::VectorXd& q) const {
   const Impl& w = *impl_;
-  footPositionBase(foot, q);  // poses the scratch state with the trunk at the origin
+  w.poseScratchAtOrigin(q);
   SimTK::RowVector_<SimTK::Vec3> js;
   w.matter.calcStationJacobian(w.scratch, w.feet[foot].body, w.feet[foot].center_body, js);
   const std::vector<int>& leg = w.leg_joints[foot];
@@ -544,6 +554,7 @@ std::vector<Eigen::Isometry3d> World::bodyPosesAt(const Eigen::Vector3d& base_po
                                                   std::vector<Eigen::Vector3d>* feet) const {
   const Impl& w = *impl_;
   SimTK::State& s = w.scratch;
+  w.scratch_q.resize(0);  // posed elsewhere than the origin from here on
   for (int i = 0; i < jointCount(); ++i) s.updQ()[w.q_of[i]] = q(i);
   const SimTK::Rotation R(SimTK::Quaternion(base_quaternion(0), base_quaternion(1), base_quaternion(2),
                                             base_quaternion(3)));
