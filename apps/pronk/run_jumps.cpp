@@ -15,6 +15,7 @@
 #include "progress.h"
 #include "pronk/controller_factory.h"
 #include "pronk/report.h"
+#include "render/declared_markers.h"
 #include "render/episode_video.h"
 #include "video_settings.h"
 
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 
 // The world-frame target marker, planned arc and predicted landing of a jump for the video.
 render::SceneMarkers jumpMarkers(const EpisodeRecord& r, const Landing& landing, const Terrain& terrain,
-                                const Eigen::Vector3d& gravity) {
+                                const Eigen::Vector3d& gravity, const EnvironmentSchema& schema) {
   render::SceneMarkers m;
   const Trace& trace = r.result.episode.trace;
   const TraceSample& s0 = trace.samples.front();
@@ -34,31 +35,12 @@ render::SceneMarkers jumpMarkers(const EpisodeRecord& r, const Landing& landing,
   const TargetSpec& t = r.episode.target;
   const auto ground = terrain.topAt(s0.base_position.x(), s0.base_position.y());
   const double surface = ground ? ground->height : 0.0;
-  const Eigen::Vector3d start_ground(s0.com_position.x(), s0.com_position.y(), surface);
   // The target marks where the trunk should come to rest, on the landing surface.
   const Eigen::Vector3d trunk_ground(s0.base_position.x(), s0.base_position.y(), surface);
   m.target = trunk_ground + heading * Eigen::Vector3d(t.x, t.y, t.z);
   m.target_yaw = yaw0 + t.yaw;
   m.landing_error = landing.error_xy;
-  const double* x = trace.findMetric("planned_lift_off_x");
-  const double* px = trace.findMetric("predicted_landing_x");
-  if (x && px) {
-    const double* y = trace.findMetric("planned_lift_off_y");
-    const double* z = trace.findMetric("planned_lift_off_z");
-    const double* vx = trace.findMetric("planned_lift_off_vx");
-    const double* vy = trace.findMetric("planned_lift_off_vy");
-    const double* vz = trace.findMetric("planned_lift_off_vz");
-    const double* tf = trace.findMetric("planned_flight_time");
-    if (y && z && vx && vy && vz && tf && std::isfinite(*tf)) {
-      const Eigen::Vector3d p(*x, *y, *z), v(*vx, *vy, *vz), g = gravity;
-      for (int i = 0; i <= 40; ++i) {
-        const double tt = *tf * i / 40;
-        m.planned_arc.push_back(start_ground + heading * (p + v * tt) + 0.5 * g * tt * tt);
-      }
-      m.predicted_landing = m.planned_arc.back();
-      m.predicted_landing->z() = surface + t.z;
-    }
-  }
+  render::addDeclaredMarkers(m, trace, schema, terrain, gravity);
   return m;
 }
 
@@ -121,6 +103,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   rollout.record_body_poses = !video.path.empty();
   if (options.full_episodes) rollout.end_at_rest = 0;
   const std::string factory_name = setup.factory->name, origin = setup.origin;
+  const EnvironmentSchema schema = setup.schema;
   RolloutPool pool(std::move(setup), rollout);
   for (const std::string& w : pool.robot().warnings) std::cerr << "warning: " << w << "\n";
 
@@ -128,18 +111,18 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   std::printf("environment %s (%s), policy %s, %zu jump(s)%s, %d thread(s)\n", factory_name.c_str(), origin.c_str(),
               policy_name.c_str(), cases.size(), options.sweep.empty() ? "" : (", sweep " + options.sweep).c_str(),
               pool.threads());
-  printJumpTableHeader(stdout);
+  printJumpTableHeader(stdout, schema);
   std::fflush(stdout);
 
   std::unique_ptr<render::EpisodeVideo> movie;
   JumpStatistics stats;
-  JumpResultsFiles files;
+  JumpResultsFiles files(schema);
   Progress progress("jump", cases.size());
   const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);
   const auto start = std::chrono::steady_clock::now();
   pool.run(cases, [&](EpisodeRecord& r) {
     const JumpOutcome outcome = judgeJump(r);
-    printJumpRow(stdout, r, outcome);
+    printJumpRow(stdout, r, outcome, schema);
     std::fflush(stdout);
     stats.add(r, outcome);
     const Trace& trace = r.result.episode.trace;
@@ -154,7 +137,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     if (!video.path.empty() && !trace.samples.empty()) {
       const Scenario s = applyCase(scenario, r.episode);  // it ran, so it applies
       const Terrain terrain(s.ground, s.ground_height, s.terrain);
-      const render::SceneMarkers markers = jumpMarkers(r, outcome.landing, terrain, gravity);
+      const render::SceneMarkers markers = jumpMarkers(r, outcome.landing, terrain, gravity, schema);
       if (options.video_per_jump) {
         render::VideoOptions one = video;
         char suffix[32];

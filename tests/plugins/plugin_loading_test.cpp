@@ -220,7 +220,7 @@ const pronk_param_decl kBadDefault[] = {
     {sizeof(pronk_param_decl), "gain", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "7", "", ""}};
 
 pronk_factory controllerNamed(const char* name) {
-  return {sizeof(pronk_factory), PRONK_FACTORY_CONTROLLER, name, "", 0, nullptr, 0, 0, 0, 0.0, noCreate, &kOps, nullptr};
+  return {sizeof(pronk_factory), PRONK_FACTORY_CONTROLLER, name, "", 0, nullptr, 0, 0, 0, 0.0, noCreate, &kOps, nullptr, 0, nullptr, nullptr, 0, 0, nullptr};
 }
 
 const pronk_factory* g_factory = nullptr;  // what the test plugin below declares
@@ -285,4 +285,21 @@ TEST(PluginLoading, TheDocumentedExamplePluginLoadsAndDamps) {
 }
 
 }  // namespace
+TEST(PluginLoading, AnAbi12EnvironmentLoadsWithoutDeclarations) {
+  // Its factory's struct_size ends before the 1.3 fields, which hold garbage:
+  // the host reads none of them and the environment has an empty schema.
+  PluginRegistry registry;
+  const PluginLibrary& lib = registry.load(PRONK_FIXTURE_ABI_1_2);
+  EXPECT_EQ(lib.abi_version(), PRONK_ABI_VERSION(1, 2));
+  const pronk_factory* f = registry.find(PRONK_FACTORY_ENVIRONMENT, "fixture_env_1_2");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->metric_count, 0);
+  EXPECT_EQ(f->marker_count, 0);
+  EXPECT_EQ(f->task_size, 0);
+  const EnvironmentSchema schema = environmentSchema(*f);
+  EXPECT_TRUE(schema.metrics.empty());
+  EXPECT_TRUE(schema.markers.empty());
+  EXPECT_TRUE(schema.task_names.empty());
+}
+
 }  // namespace pronk

@@ -20,10 +20,12 @@ struct EpisodeOptions {
   // landing's inputs), and the loop allocates nothing for samples.
   bool record_samples = true;
   bool record_body_poses = false;  // per-sample poses of every body (for video)
-  // > 0: end the episode once the robot has come to rest after a flight: after
-  // a touchdown every foot is down, the CoM slower than kRestSpeed and the
-  // trunk turning slower than kRestRate, all held for this long (s). What
-  // follows changes the landing by well under a millimetre (docs/performance.md).
+  // The robot is at rest after a flight when, after a touchdown, every foot is
+  // down, the CoM is slower than kRestSpeed and the trunk turns slower than
+  // kRestRate; the trace's event "at_rest" marks when it last came to rest (and
+  // stayed so to the end). > 0: end the episode once it has stayed at rest this
+  // long (s); what would follow moves the landing by under a millimetre
+  // (docs/performance.md).
   double end_at_rest = 0;
 };
 

@@ -18,6 +18,7 @@
 
 #include "pronk/error.h"
 #include "pronk/plugin_abi.h"
+#include "pronk/schema.h"
 #include "pronk/scenario.h"
 
 namespace pronk {
@@ -25,6 +26,9 @@ namespace pronk {
 // One loaded plugin library. The factories it lists are the host's own copies of
 // the plugin's descriptors, normalised to this host's struct sizes (fields the
 // plugin's ABI version lacks read as zero / NULL), so `f->params[i]` is safe.
+// An environment factory's declarations (ABI 1.3; empty for an older plugin).
+EnvironmentSchema environmentSchema(const pronk_factory& factory);
+
 class PluginLibrary {
  public:
   ~PluginLibrary();

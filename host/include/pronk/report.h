@@ -24,7 +24,8 @@ struct JumpOutcome {
 
 JumpOutcome judgeJump(const EpisodeRecord& record);
 
-// Counts and errors over a run's jumps; landed = ok + missed.
+// Counts and errors over a run's jumps; landed = ok + missed. Times to rest are
+// the host's (the trace's "at_rest" event, pronk/episode.h).
 struct JumpStatistics {
   size_t jumps = 0, ran = 0;
   int standing = 0, failed = 0, rejected = 0, missed = 0;
@@ -35,15 +36,21 @@ struct JumpStatistics {
 };
 
 // The console table (markdown), one row per jump, and the summary under it.
-void printJumpTableHeader(std::FILE* out);
-void printJumpRow(std::FILE* out, const EpisodeRecord& record, const JumpOutcome& outcome);
+// Beyond the host's columns (target, landing, errors, status, reward), one per
+// metric the environment declares with a column (pronk/schema.h).
+void printJumpTableHeader(std::FILE* out, const EnvironmentSchema& schema);
+void printJumpRow(std::FILE* out, const EpisodeRecord& record, const JumpOutcome& outcome,
+                  const EnvironmentSchema& schema);
 // `wall_clock_s` > 0: the run's own wall time, for the jumps/s of the whole
 // run (threads overlap, so the episodes' summed wall time overstates it).
 void printJumpSummary(std::FILE* out, const JumpStatistics& stats, double wall_clock_s);
 
-// results.json and results.csv of a run's jumps (docs/results-format.md).
+// results.json and results.csv of a run's jumps (docs/results-format.md): the
+// metrics filed by their declared kinds, the CSV's metric columns those the
+// environment declares.
 class JumpResultsFiles {
  public:
+  explicit JumpResultsFiles(EnvironmentSchema schema) : schema_(std::move(schema)) {}
   // `trace_file`: the jump's trace CSV beside the results ("" = none written).
   void add(const EpisodeRecord& record, const JumpOutcome& outcome, const std::string& trace_file);
   // Writes DIR/results.json and DIR/results.csv. Throws Error when it cannot.
@@ -51,6 +58,7 @@ class JumpResultsFiles {
   const nlohmann::json& json() const { return json_; }
 
  private:
+  EnvironmentSchema schema_;
   nlohmann::json json_ = nlohmann::json::array();
   std::string csv_;
 };

@@ -35,6 +35,7 @@ struct RolloutSetup {
   const pronk_factory* factory = nullptr;  // the environment
   std::string origin;                      // its library, for messages
   ResolvedParams params;                   // the environment's parameters
+  EnvironmentSchema schema;                // what its metrics mean (ABI 1.3 declarations)
   // Called from the worker threads, concurrently: it must not share mutable
   // state between calls (an MlpPolicy is const; `ballistic` asks its own env).
   Policy policy;

@@ -10,12 +10,16 @@
 #include <set>
 
 #include "pronk/plugin_registry.h"
+#include "pronk/schema.h"
 
 namespace pronk {
 
 struct PluginLibrary::Factory {
   pronk_factory factory{};
   std::vector<pronk_param_decl> params;
+  std::vector<pronk_metric_decl> metrics;  // 1.3
+  std::vector<pronk_marker_decl> markers;  // 1.3
+  std::vector<const char*> task_names;     // 1.3
   pronk_controller_ops controller{};
   pronk_environment_ops environment{};
 };
@@ -29,6 +33,8 @@ constexpr size_t kFactorySize_1_0 = PRONK_END_OF(pronk_factory, environment);
 constexpr size_t kParamDeclSize_1_0 = PRONK_END_OF(pronk_param_decl, description);
 constexpr size_t kControllerOpsSize_1_0 = PRONK_END_OF(pronk_controller_ops, destroy);
 constexpr size_t kEnvironmentOpsSize_1_0 = PRONK_END_OF(pronk_environment_ops, destroy);
+constexpr size_t kMetricDeclSize_1_3 = PRONK_END_OF(pronk_metric_decl, pairs_with);
+constexpr size_t kMarkerDeclSize_1_3 = PRONK_END_OF(pronk_marker_decl, metrics);
 #undef PRONK_END_OF
 
 constexpr uint32_t kMaxStructSize = 1u << 16;  // anything bigger is a corrupt size field
@@ -120,13 +126,90 @@ std::vector<pronk_param_decl> readParams(const Checker& check, const pronk_facto
   return out;
 }
 
-std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const pronk_factory* raw, int32_t index) {
+// A size-prefixed array (stride: the first entry's struct_size), each entry
+// checked against `minimum` and copied at host size.
+template <class T>
+std::vector<T> readArray(const Checker& check, const void* array, int32_t count, size_t minimum, int32_t limit,
+                         const std::string& what) {
+  std::vector<T> out;
+  if (count < 0 || count > limit) check.fail(what + ": " + std::to_string(count) + " entries");
+  if (count == 0) return out;
+  if (!array) check.fail(what + ": " + std::to_string(count) + " entries but the array is NULL");
+  const auto* base = static_cast<const unsigned char*>(array);
+  const uint32_t stride = sizeField(base);
+  for (int32_t i = 0; i < count; ++i) {
+    const unsigned char* raw = base + static_cast<size_t>(i) * stride;
+    const std::string at = what + " #" + std::to_string(i);
+    const uint32_t size = sizeField(raw);
+    if (size < minimum || size > kMaxStructSize) {
+      check.fail(at + " has struct_size " + std::to_string(size) + "; ABI 1.3 needs at least " + std::to_string(minimum));
+    }
+    if (size != stride) check.fail(at + " has struct_size " + std::to_string(size) + ", the first has " + std::to_string(stride));
+    out.push_back(readSized<T>(raw));
+  }
+  return out;
+}
+
+// ABI 1.3: the environment's declared metrics, task names and markers.
+void readDeclarations(const Checker& check, PluginLibrary::Factory& out, const std::string& who) {
+  pronk_factory& f = out.factory;
+  out.metrics = readArray<pronk_metric_decl>(check, f.metrics, f.metric_count, kMetricDeclSize_1_3, kMaxParams * 4,
+                                             who + ", metric");
+  std::set<std::string> names;
+  for (const pronk_metric_decl& m : out.metrics) {
+    if (!validName(m.name)) check.fail(who + " declares a metric named " + quoted(m.name) + ", not [a-z0-9_]+");
+    if (!names.insert(m.name).second) check.fail(who + " declares metric '" + std::string(m.name) + "' twice");
+    if (m.kind > PRONK_METRIC_TIME) {
+      check.fail(who + ", metric '" + m.name + "' has unknown kind " + std::to_string(m.kind));
+    }
+  }
+  for (const pronk_metric_decl& m : out.metrics) {
+    if (!m.pairs_with) continue;
+    const std::string with = m.pairs_with;
+    const auto& events = hostContactEvents();
+    if (!names.count(with) && std::find(events.begin(), events.end(), with) == events.end()) {
+      check.fail(who + ", metric '" + m.name + "' pairs with '" + with + "', neither a declared metric nor a host event");
+    }
+  }
+  out.markers = readArray<pronk_marker_decl>(check, f.markers, f.marker_count, kMarkerDeclSize_1_3, 64, who + ", marker");
+  for (const pronk_marker_decl& m : out.markers) {
+    if (m.kind != PRONK_MARKER_POINT && m.kind != PRONK_MARKER_ARC) {
+      check.fail(who + " declares a marker of unknown kind " + std::to_string(m.kind));
+    }
+    const int needed = m.kind == PRONK_MARKER_POINT ? 3 : 7;
+    for (int i = 0; i < needed; ++i) {
+      if (!m.metrics[i] || !names.count(m.metrics[i])) {
+        check.fail(who + ", marker " + quoted(m.label) + ": metrics[" + std::to_string(i) + "] " + quoted(m.metrics[i]) +
+                   " is not a declared metric");
+      }
+    }
+  }
+  if (f.task_size < 0 || f.task_size > 4096) check.fail(who + " declares " + std::to_string(f.task_size) + " task names");
+  if (f.task_size > 0 && !f.task_names) check.fail(who + " declares " + std::to_string(f.task_size) + " task names but none");
+  for (int32_t i = 0; i < f.task_size; ++i) {
+    if (!validName(f.task_names[i])) check.fail(who + ", task name #" + std::to_string(i) + " " + quoted(f.task_names[i]) + " is not [a-z0-9_]+");
+    out.task_names.push_back(f.task_names[i]);
+  }
+  f.metrics = out.metrics.empty() ? nullptr : out.metrics.data();
+  f.markers = out.markers.empty() ? nullptr : out.markers.data();
+  f.task_names = out.task_names.empty() ? nullptr : out.task_names.data();
+}
+
+std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const pronk_factory* raw, int32_t index,
+                                                    uint32_t abi_version) {
   const std::string slot = "factory #" + std::to_string(index);
   if (!raw) check.fail(slot + " is NULL");
   check.checkSize(raw, kFactorySize_1_0, slot);
   auto out = std::make_unique<PluginLibrary::Factory>();
   pronk_factory& f = out->factory;
   f = readSized<pronk_factory>(raw);
+  if (PRONK_ABI_VERSION_MINOR(abi_version) < 3) {
+    // Fields of 1.3 are not the plugin's to fill at an older minor.
+    f.metric_count = f.task_size = f.marker_count = 0;
+    f.metrics = nullptr;
+    f.task_names = nullptr;
+    f.markers = nullptr;
+  }
   if (!validName(f.name)) check.fail(slot + " is named " + quoted(f.name) + ", not [a-z0-9_]+");
   if (f.kind != PRONK_FACTORY_CONTROLLER && f.kind != PRONK_FACTORY_ENVIRONMENT) {
     check.fail(slot + " ('" + f.name + "') has unknown kind " + std::to_string(f.kind));
@@ -162,11 +245,40 @@ std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const 
     }
     f.environment = &out->environment;
     f.controller = nullptr;
+    readDeclarations(check, *out, who);
   }
   return out;
 }
 
 }  // namespace
+
+EnvironmentSchema environmentSchema(const pronk_factory& f) {
+  EnvironmentSchema schema;
+  auto text = [](const char* s) { return std::string(s ? s : ""); };
+  for (int32_t i = 0; i < f.metric_count; ++i) {
+    const pronk_metric_decl& d = f.metrics[i];  // the host's copy: host stride
+    MetricSpec m;
+    m.name = d.name;
+    m.kind = d.kind == PRONK_METRIC_PENALTY ? MetricSpec::Kind::Penalty
+             : d.kind == PRONK_METRIC_TIME  ? MetricSpec::Kind::Time
+                                            : MetricSpec::Kind::Value;
+    m.unit = text(d.unit);
+    m.description = text(d.description);
+    m.column = text(d.column);
+    m.pairs_with = text(d.pairs_with);
+    schema.metrics.push_back(std::move(m));
+  }
+  for (int32_t i = 0; i < f.task_size; ++i) schema.task_names.push_back(f.task_names[i]);
+  for (int32_t i = 0; i < f.marker_count; ++i) {
+    const pronk_marker_decl& d = f.markers[i];
+    MarkerSpec m;
+    m.kind = d.kind == PRONK_MARKER_ARC ? MarkerSpec::Kind::Arc : MarkerSpec::Kind::Point;
+    m.label = text(d.label);
+    for (int k = 0; k < (d.kind == PRONK_MARKER_ARC ? 7 : 3); ++k) m.metrics.push_back(d.metrics[k]);
+    schema.markers.push_back(std::move(m));
+  }
+  return schema;
+}
 
 PluginLibrary::PluginLibrary() = default;
 
@@ -216,7 +328,7 @@ std::unique_ptr<PluginLibrary> PluginRegistry::handshake(const std::string& path
   library->version_ = manifest.plugin_version ? manifest.plugin_version : "";
   library->abi_version_ = manifest.abi_version;
   for (int32_t i = 0; i < manifest.factory_count; ++i) {
-    auto f = readFactory(check, manifest.factories[i], i);
+    auto f = readFactory(check, manifest.factories[i], i, manifest.abi_version);
     for (const auto& other : library->factories_) {
       if (other->factory.kind == f->factory.kind && std::strcmp(other->factory.name, f->factory.name) == 0) {
         check.fail("declares " + factoryKindName(f->factory.kind) + " '" + f->factory.name + "' twice");

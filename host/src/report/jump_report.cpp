@@ -57,15 +57,30 @@ std::string csvCell(double v) {
   return text;
 }
 
-std::string timePair(const Trace& trace, const char* planned, const char* actual_event, const char* actual_metric) {
-  const double* p = trace.findMetric(planned);
-  double a = NAN;
-  if (actual_event && event(trace, actual_event)) a = event(trace, actual_event)->time;
-  if (actual_metric && trace.findMetric(actual_metric)) a = *trace.findMetric(actual_metric);
-  char text[32];
-  std::snprintf(text, sizeof text, "%5.3f/%5.3f", p ? *p : NAN, a);
-  return text;
+// The time of a host event, or the value of a metric, by name; NaN when absent.
+double eventOrMetric(const Trace& trace, const std::string& name) {
+  if (const TraceEvent* e = trace.findEvent(name)) return e->time;
+  return metricOrNaN(trace, name.c_str());
 }
+
+std::vector<const MetricSpec*> tableColumns(const EnvironmentSchema& schema) {
+  std::vector<const MetricSpec*> out;
+  for (const MetricSpec& m : schema.metrics)
+    if (!m.column.empty()) out.push_back(&m);
+  return out;
+}
+
+// A column's text: the metric, and beside it what it pairs with ("planned/detected").
+std::string columnCell(const Trace& trace, const MetricSpec& m) {
+  const char* format = m.unit == "s" ? "%5.3f" : "%5.2f";
+  char a[32], b[32];
+  std::snprintf(a, sizeof a, format, metricOrNaN(trace, m.name.c_str()));
+  if (m.pairs_with.empty()) return a;
+  std::snprintf(b, sizeof b, format, eventOrMetric(trace, m.pairs_with));
+  return std::string(a) + "/" + b;
+}
+
+size_t columnWidth(const MetricSpec& m) { return std::max<size_t>(m.column.size(), m.pairs_with.empty() ? 5 : 11); }
 
 double simulatedOf(const Trace& trace) { return trace.samples.empty() ? 0.0 : trace.samples.back().time; }
 
@@ -92,35 +107,32 @@ void JumpStatistics::add(const EpisodeRecord& r, const JumpOutcome& o) {
     errors.push_back(o.landing.error_xy);
     yaw_errors_deg.push_back(o.landing.error_yaw * kDeg);
     if (o.landing.standing) ++standing;
-    if (const double* rest = r.result.episode.trace.findMetric("rest_time"); rest && std::isfinite(*rest)) {
-      rest_times.push_back(*rest);
-    }
+    if (const TraceEvent* rest = r.result.episode.trace.findEvent("at_rest")) rest_times.push_back(rest->time);
   }
 }
 
-void printJumpTableHeader(std::FILE* out) {
-  std::fprintf(out, "\n| %3s | %-25s | %-25s | %6s | %5s | %-11s | %-11s | %-11s | %-11s | %-8s | %5s |\n", "#",
-               "target x y z [m] yaw[deg]", "landing x y z [m] yaw[deg]", "err cm", "yaw ", "lift-off s", "apex s",
-               "touchdown s", "pred. xy m", "status", "reward");
-  std::fprintf(out, "|-----|---------------------------|---------------------------|--------|-------|-------------|"
-                    "-------------|-------------|-------------|----------|-------|\n");
+void printJumpTableHeader(std::FILE* out, const EnvironmentSchema& schema) {
+  std::fprintf(out, "\n| %3s | %-25s | %-25s | %6s | %5s |", "#", "target x y z [m] yaw[deg]", "landing x y z [m] yaw[deg]",
+               "err cm", "yaw ");
+  std::string rule = "|-----|---------------------------|---------------------------|--------|-------|";
+  for (const MetricSpec* m : tableColumns(schema)) {
+    std::fprintf(out, " %-*s |", static_cast<int>(columnWidth(*m)), m->column.c_str());
+    rule += std::string(columnWidth(*m) + 2, '-') + "|";
+  }
+  std::fprintf(out, " %-8s | %5s |\n%s----------|-------|\n", "status", "reward", rule.c_str());
 }
 
-void printJumpRow(std::FILE* out, const EpisodeRecord& r, const JumpOutcome& o) {
+void printJumpRow(std::FILE* out, const EpisodeRecord& r, const JumpOutcome& o, const EnvironmentSchema& schema) {
   const Trace& trace = r.result.episode.trace;
   const TargetSpec& t = r.episode.target;
   const Landing& l = o.landing;
-  const double* px = trace.findMetric("predicted_landing_x");
-  const double* py = trace.findMetric("predicted_landing_y");
-  std::fprintf(out,
-               "| %3zu | %5.2f %5.2f %5.2f %6.1f | %5.2f %5.2f %5.2f %6.1f | %6.1f | %5.1f | %s | %s | %s | %5.2f %5.2f | "
-               "%-8s | %5.3f |\n",
-               r.index, t.x, t.y, t.z, t.yaw * kDeg, l.displacement.x(), l.displacement.y(), l.displacement.z(),
-               l.yaw * kDeg, 100 * l.error_xy, l.error_yaw * kDeg,
-               timePair(trace, "planned_lift_off_time", "lift_off", nullptr).c_str(),
-               timePair(trace, "planned_apex_time", nullptr, "apex_time").c_str(),
-               timePair(trace, "planned_touchdown_time", "touchdown", nullptr).c_str(), px ? *px : NAN, py ? *py : NAN,
-               o.status.c_str(), r.result.reward);
+  std::fprintf(out, "| %3zu | %5.2f %5.2f %5.2f %6.1f | %5.2f %5.2f %5.2f %6.1f | %6.1f | %5.1f |", r.index, t.x, t.y,
+               t.z, t.yaw * kDeg, l.displacement.x(), l.displacement.y(), l.displacement.z(), l.yaw * kDeg,
+               100 * l.error_xy, l.error_yaw * kDeg);
+  for (const MetricSpec* m : tableColumns(schema)) {
+    std::fprintf(out, " %*s |", static_cast<int>(columnWidth(*m)), columnCell(trace, *m).c_str());
+  }
+  std::fprintf(out, " %-8s | %5.3f |\n", o.status.c_str(), r.result.reward);
   if (!o.reason.empty()) std::fprintf(out, "|     |   %s\n", o.reason.c_str());
 }
 
@@ -133,8 +145,8 @@ void printJumpSummary(std::FILE* out, const JumpStatistics& s, double wall_clock
                  "landing error: median %.1f cm, 90th percentile %.1f cm, max %.1f cm; yaw error median %.1f deg\n",
                  100 * median(s.errors), 100 * percentile(s.errors, 0.9), 100 * percentile(s.errors, 1.0),
                  median(s.yaw_errors_deg));
-    std::fprintf(out, "ended standing: %d of %zu; time to rest (CoM < 0.05 m/s): median %.2f s\n", s.standing, landed,
-                 median(s.rest_times));
+    std::fprintf(out, "ended standing: %d of %zu; at rest (feet down, CoM < %.2f m/s, trunk < %.1f rad/s) from: median %.2f s\n",
+                 s.standing, landed, kRestSpeed, kRestRate, median(s.rest_times));
   }
   if (s.ran > 0 && s.wall_s > 0) {
     std::fprintf(out, "simulated %.1f s in %.1f s of episode wall time (%.1fx real time per episode)", s.simulated_s,
@@ -167,23 +179,32 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
   j["reward"] = r.result.reward;
   j["observation"] = r.result.observation;
   j["action"] = r.result.action;
+  // Metrics filed by their declared kind; one the environment did not declare
+  // (or an ABI 1.2 plugin's) is a plain metric.
   nlohmann::json penalties = nlohmann::json::object(), metrics = nlohmann::json::object();
   for (const TraceMetric& m : trace.metrics) {
-    if (m.name.rfind("penalty_", 0) == 0) penalties[m.name.substr(8)] = number(m.value);
-    else metrics[m.name] = number(m.value);
+    const MetricSpec* spec = schema_.find(m.name);
+    (spec && spec->kind == MetricSpec::Kind::Penalty ? penalties : metrics)[m.name] = number(m.value);
   }
   j["penalties"] = penalties;
   j["metrics"] = metrics;
+  // The host's contact events and rest, then every declared time (null when it did not happen).
   nlohmann::json events = nlohmann::json::object();
-  for (const char* name : {"lift_off", "touchdown"}) {
-    const TraceEvent* e = event(trace, name);
+  std::vector<std::string> event_names = hostContactEvents();
+  event_names.push_back("at_rest");
+  for (const std::string& name : event_names) {
+    const TraceEvent* e = trace.findEvent(name);
     events[name] = e ? nlohmann::json(e->time) : nlohmann::json(nullptr);
   }
-  for (const char* name : {"planned_lift_off_time", "planned_apex_time", "planned_touchdown_time", "apex_time",
-                           "rest_time"}) {
-    events[name] = number(metricOrNaN(trace, name));
+  for (const MetricSpec& m : schema_.metrics) {
+    if (m.kind == MetricSpec::Kind::Time) events[m.name] = number(metricOrNaN(trace, m.name.c_str()));
   }
   j["events"] = events;
+  if (!schema_.task_names.empty() && schema_.task_names.size() == r.result.task.size()) {
+    nlohmann::json task = nlohmann::json::object();
+    for (size_t i = 0; i < r.result.task.size(); ++i) task[schema_.task_names[i]] = number(r.result.task[i]);
+    j["task"] = task;
+  }
   j["event_log"] = nlohmann::json::array();
   for (const TraceEvent& e : trace.events) j["event_log"].push_back({{"time", e.time}, {"name", e.name}, {"detail", e.detail}});
   j["simulated_s"] = simulatedOf(trace);
@@ -192,7 +213,6 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
   json_.push_back(std::move(j));
 
   auto ev = [&](const char* name) { return csvCell(event(trace, name) ? event(trace, name)->time : NAN); };
-  auto m = [&](const char* name) { return csvCell(metricOrNaN(trace, name)); };
   std::string reason = o.reason;
   for (char& c : reason)
     if (c == '"') c = '\'';
@@ -201,10 +221,9 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
                    l.error_yaw * kDeg}) {
     row += csvCell(v) + ',';
   }
-  row += o.status + ',' + csvCell(r.result.reward) + ',' + ev("lift_off") + ',' + m("planned_lift_off_time") + ',' +
-         m("apex_time") + ',' + m("planned_apex_time") + ',' + ev("touchdown") + ',' + m("planned_touchdown_time") +
-         ',' + m("predicted_landing_x") + ',' + m("predicted_landing_y") + ',' + m("rest_time") + ',' +
-         (l.standing && o.status != "failed" ? "1" : "0") + ",\"" + reason + "\"\n";
+  row += o.status + ',' + csvCell(r.result.reward) + ',' + ev("lift_off") + ',' + ev("touchdown") + ',' + ev("at_rest") + ',';
+  for (const MetricSpec* spec : tableColumns(schema_)) row += csvCell(metricOrNaN(trace, spec->name.c_str())) + ',';
+  row += std::string(l.standing && o.status != "failed" ? "1" : "0") + ",\"" + reason + "\"\n";
   csv_ += row;
 }
 
@@ -218,9 +237,9 @@ void JumpResultsFiles::write(const std::string& dir) const {
   const std::string csv_path = (fs::path(dir) / "results.csv").string();
   std::ofstream out(csv_path);
   out << "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,error_yaw_deg,"
-         "status,reward,lift_off,planned_lift_off,apex,planned_apex,touchdown,planned_touchdown,predicted_landing_x,"
-         "predicted_landing_y,rest_time,ended_standing,reason\n"
-      << csv_;
+         "status,reward,lift_off,touchdown,at_rest,";
+  for (const MetricSpec* spec : tableColumns(schema_)) out << spec->name << ',';
+  out << "ended_standing,reason\n" << csv_;
   if (!out) throw Error(csv_path + ": cannot write");
 }
 

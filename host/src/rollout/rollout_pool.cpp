@@ -146,6 +146,7 @@ RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& re
   setup.scenario = scenario;
   setup.factory = &findEnvironment(spec, registry);
   setup.origin = registry.libraryOf(setup.factory)->path();
+  setup.schema = environmentSchema(*setup.factory);
   std::vector<ParamSetting> params = spec.params;
   for (const ParamSetting& p : overrides) setParam(params, p);
   setup.params = resolveParams(*setup.factory, params, spec.where);

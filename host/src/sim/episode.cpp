@@ -53,16 +53,14 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
         landed = true;
       }
       was_airborne = !any_contact;
-      if (options.end_at_rest > 0 && landed) {
+      if (landed) {
+        // At rest after the landing: every foot down, the CoM and the trunk still.
         const RobotState& now = world.state();
         bool still = now.com_velocity.norm() < kRestSpeed && now.base_angular_velocity.norm() < kRestRate;
         for (uint8_t c : now.foot_in_contact) still = still && c;
-        if (!still) {
-          rest_since = NAN;
-        } else if (std::isnan(rest_since)) {
-          rest_since = now.time;
-        } else if (now.time - rest_since >= options.end_at_rest - 1e-9) {
-          trace.addEvent(now.time, "at_rest");
+        if (!still) rest_since = NAN;
+        else if (std::isnan(rest_since)) rest_since = now.time;
+        if (options.end_at_rest > 0 && !std::isnan(rest_since) && now.time - rest_since >= options.end_at_rest - 1e-9) {
           break;
         }
       }
@@ -71,6 +69,7 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
     result.failure = Failure{world.time(), "controller", e.what()};
   }
   if (!result.failure && world.failure()) result.failure = world.failure();
+  if (!result.failure && !std::isnan(rest_since)) trace.addEvent(rest_since, "at_rest");
   if (result.failure) trace.addEvent(result.failure->time, "failure", result.failure->reason + ": " + result.failure->detail);
   // The final state, so the trace ends where the robot did.
   trace.samples.push_back(sampleOf(world, world.state(), Eigen::VectorXd::Zero(world.jointCount()),

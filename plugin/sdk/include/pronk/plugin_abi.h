@@ -42,6 +42,9 @@
  *   1.0  first version.
  *   1.1  PRONK_REJECTED; pronk_host_api::report_metric; pronk_environment_ops::prior_action.
  *   1.2  pronk_host_api::centroidal_momentum.
+ *   1.3  pronk_factory::metrics, task_names, markers: an environment declares as data
+ *        the metrics it reports, the layout of its task vector and the markers a
+ *        video may draw, so that a host's tables, files and videos name none of them.
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -56,7 +59,7 @@ extern "C" {
 #endif
 
 #define PRONK_ABI_MAJOR 1u
-#define PRONK_ABI_MINOR 2u
+#define PRONK_ABI_MINOR 3u
 #define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
 #define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
 #define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
@@ -222,6 +225,45 @@ typedef struct pronk_environment_ops {
                                char* error, size_t error_size);
 } pronk_environment_ops;
 
+/* 1.3: what a reported metric is, for the host to file it without knowing its name. */
+typedef enum pronk_metric_kind {
+  PRONK_METRIC_VALUE = 0,   /* a number of the episode */
+  PRONK_METRIC_PENALTY = 1, /* a cost term of the reward */
+  PRONK_METRIC_TIME = 2     /* a time of the episode, s since reset (planned or detected) */
+} pronk_metric_kind;
+
+/* 1.3: one metric an environment reports with report_metric, declared up front. An
+   array of them has the stride of its first entry's struct_size, as params. */
+typedef struct pronk_metric_decl {
+  uint32_t struct_size;
+  const char* name;         /* [a-z0-9_]+, the name given to report_metric */
+  uint32_t kind;            /* pronk_metric_kind */
+  const char* unit;         /* "m", "s", "" ... */
+  const char* description;  /* one line */
+  /* Non-NULL: a column of the host's console table and results.csv with this header. */
+  const char* column;
+  /* Optional: a host event ("lift_off", "touchdown": all feet off, then a foot back on)
+     or another metric shown beside this one in its column, as "this/that" (a plan
+     against what happened). NULL: none. */
+  const char* pairs_with;
+} pronk_metric_decl;
+
+/* 1.3: markers a video may draw over an episode, their numbers read from metrics.
+   Positions and velocities are in the environment's start frame: origin on the
+   ground below the robot's start, x along its initial heading, z up. */
+typedef enum pronk_marker_kind {
+  PRONK_MARKER_POINT = 1, /* metrics[0..2]: x, y, z (m); drawn on the surface below */
+  PRONK_MARKER_ARC = 2    /* a ballistic arc under gravity: metrics[0..6] = x, y, z (m),
+                             vx, vy, vz (m/s), duration (s) */
+} pronk_marker_kind;
+
+typedef struct pronk_marker_decl {
+  uint32_t struct_size;
+  uint32_t kind;            /* pronk_marker_kind */
+  const char* label;        /* legend text, e.g. "planned flight" */
+  const char* metrics[7];   /* metric names, as the kind says; unused entries NULL */
+} pronk_marker_decl;
+
 /* A named factory. Sizes are declarations the host checks before running:
    0 means "any" (decided by the robot). */
 typedef struct pronk_factory {
@@ -240,6 +282,13 @@ typedef struct pronk_factory {
                          int32_t param_count, void** instance, char* error, size_t error_size);
   const pronk_controller_ops* controller;   /* kind == CONTROLLER */
   const pronk_environment_ops* environment; /* kind == ENVIRONMENT */
+  /* 1.3, environments (all optional: 0 / NULL). */
+  int32_t metric_count;
+  const pronk_metric_decl* metrics;  /* metric_count entries, each with its own struct_size */
+  const char* const* task_names;     /* NULL or one name per task number (e.g. "x", "yaw") */
+  int32_t task_size;                 /* entries of task_names */
+  int32_t marker_count;
+  const pronk_marker_decl* markers;  /* marker_count entries, each with its own struct_size */
 } pronk_factory;
 
 /* Zeroed by the host, which sets struct_size; filled by the plugin, which writes only
