@@ -14,8 +14,8 @@
 
 #include <Eigen/Core>
 
+#include "abi/plugin_params.h"
 #include "method/motor_model.h"
-#include "plugin_params.h"
 #include "pronk/plugin_abi.h"
 
 namespace pronk::guided_jump {

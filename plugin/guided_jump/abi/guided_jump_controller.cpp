@@ -1,14 +1,14 @@
-// Controller `guided_jump`: with no `action` it holds the stance (hold_controller.h);
+// Controller `guided_jump`: with no `action` it holds the stance (control/hold_controller.h);
 // with an action it jumps: stand, thrust, explosive, flight, descend, landing
-// (jump_phases.h).
+// (control/jump_phases.h).
 #include <array>
 #include <new>
 
-#include "abi_boundary.h"
-#include "factories.h"
-#include "hold_controller.h"
-#include "jump_phases.h"
-#include "plugin_params.h"
+#include "abi/abi_boundary.h"
+#include "abi/factories.h"
+#include "abi/plugin_params.h"
+#include "control/hold_controller.h"
+#include "control/jump_phases.h"
 
 namespace pronk::guided_jump {
 namespace {

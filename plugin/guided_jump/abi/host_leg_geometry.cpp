@@ -1,4 +1,4 @@
-#include "host_leg_geometry.h"
+#include "abi/host_leg_geometry.h"
 
 #include <cmath>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "jump_phases.h"
+#include "control/jump_phases.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
-#include "abi_boundary.h"
+#include "abi/abi_boundary.h"
 #include "method/force_distribution.h"
 #include "method/action_mapping.h"
 #include "method/ballistics.h"

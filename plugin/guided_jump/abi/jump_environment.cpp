@@ -7,7 +7,7 @@
 //   act():           the safety filter runs before anything moves: a thrust path
 //                    that loses a foot's reach, or a flight whose apex stays
 //                    below the target, is rejected (PRONK_REJECTED, with why);
-//   step():          the guided_jump phase machine (jump_phases.h);
+//   step():          the guided_jump phase machine (control/jump_phases.h);
 //   finish():        the paper's reward with every term reported as a metric
 //                    (method/reward.h), plus the plan's predictions;
 //   prior_action():  the analytic ballistic planner (method/planner.h) as raw
@@ -23,17 +23,17 @@
 
 #include <Eigen/Geometry>
 
-#include "abi_boundary.h"
-#include "factories.h"
-#include "host_leg_geometry.h"
-#include "jump_phases.h"
+#include "abi/abi_boundary.h"
+#include "abi/factories.h"
+#include "abi/host_leg_geometry.h"
+#include "abi/plugin_params.h"
+#include "control/jump_phases.h"
 #include "method/action_mapping.h"
 #include "method/ballistics.h"
 #include "method/orientation_trajectory.h"
 #include "method/planner.h"
 #include "method/reward.h"
 #include "method/string_format.h"
-#include "plugin_params.h"
 
 namespace pronk::guided_jump {
 namespace {
@@ -239,7 +239,7 @@ class JumpEnvironment {
       config.yaw_at_lift_off_fraction = {0.0};
     }
     // The landing stops the CoM beyond its touchdown point (landingStop in
-    // jump_phases.h): aim the touchdown that much short of the target, a few
+    // control/jump_phases.h): aim the touchdown that much short of the target, a few
     // fixed-point rounds.
     jump::PlannedJump plan = jump::planJump(target, config);
     for (int round = 0; round < 4 && plan.feasible; ++round) {

@@ -1,8 +1,8 @@
 // The plugin's one exported symbol: the ABI handshake and the manifest.
 #include <cstddef>
 
-#include "abi_boundary.h"
-#include "factories.h"
+#include "abi/abi_boundary.h"
+#include "abi/factories.h"
 
 #ifndef PRONK_VERSION
 #error "PRONK_VERSION must be defined by the build"

@@ -1,4 +1,4 @@
-#include "hold_controller.h"
+#include "control/hold_controller.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "abi_boundary.h"
+#include "abi/abi_boundary.h"
 #include "method/force_distribution.h"
 
 namespace pronk::guided_jump {

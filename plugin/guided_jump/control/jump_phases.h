@@ -1,4 +1,4 @@
-// The guided jump as a phase machine around the stance controller (hold_controller.h):
+// The guided jump as a phase machine around the stance controller (control/hold_controller.h):
 //
 //   stand      0 .. start_delay          stance PD + gravity compensation (HoldController)
 //   thrust     Bezier part of the ThrustPlan (T_th)      } the whole-body CoM follows the plan,
@@ -46,7 +46,7 @@
 
 #include <Eigen/Core>
 
-#include "hold_controller.h"
+#include "control/hold_controller.h"
 #include "method/explosive_phase.h"
 #include "method/orientation_trajectory.h"
 #include "pronk/plugin_abi.h"

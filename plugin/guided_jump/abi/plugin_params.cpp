@@ -1,4 +1,4 @@
-#include "plugin_params.h"
+#include "abi/plugin_params.h"
 
 #include <cerrno>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "abi_boundary.h"
+#include "abi/abi_boundary.h"
 
 namespace pronk::guided_jump {
 namespace {
