@@ -26,6 +26,7 @@
 #include "abi/abi_boundary.h"
 #include "abi/factories.h"
 #include "abi/host_leg_geometry.h"
+#include "abi/jump_params.h"
 #include "abi/plugin_params.h"
 #include "control/jump_phases.h"
 #include "method/action_mapping.h"
@@ -33,7 +34,6 @@
 #include "method/orientation_trajectory.h"
 #include "method/planner.h"
 #include "method/reward.h"
-#include "method/string_format.h"
 
 namespace pronk::guided_jump {
 namespace {
@@ -48,58 +48,6 @@ class Rejected : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string rangeText(bool upper) {
-  const jump::ActionRanges r = jump::go1ActionRanges();
-  std::string text;
-  for (int i = 0; i < kActionSize; ++i) {
-    text += (i ? " " : "") + jump::format("%.15g", upper ? r.bounds[i].max : r.bounds[i].min);
-  }
-  return text;
-}
-
-const std::vector<pronk_param_decl>& paramDecls() {
-  static const std::string range_min = rangeText(false), range_max = rangeText(true);
-  static const std::vector<pronk_param_decl> decls = [] {
-    std::vector<pronk_param_decl> d(std::begin(kHoldParamDecls), std::end(kHoldParamDecls));
-    const std::vector<pronk_param_decl> own = {
-        {sizeof(pronk_param_decl), "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s",
-         "episode length, from reset"},
-        {sizeof(pronk_param_decl), "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
-         "standing time before the thrust"},
-        {sizeof(pronk_param_decl), "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "dynamic", "",
-         kFeedforwardDoc},
-        {sizeof(pronk_param_decl), "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
-         "Kp is divided by this from lift-off to touchdown"},
-        {sizeof(pronk_param_decl), "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
-         "thrust: the trunk turns against the touchdown attitude error the whole-body angular momentum predicts, "
-         "at this rate per rad/s (0: off, the paper's)"},
-        {sizeof(pronk_param_decl), "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
-         "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
-         "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
-        {sizeof(pronk_param_decl), "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_max.c_str(), "SI",
-         "upper ends of the 13 action ranges"},
-        {sizeof(pronk_param_decl), "raw_limit", PRONK_PARAM_REAL, 0, 0.01, 100.0, 0, "5", "",
-         "raw policy outputs are clipped to +-this before the affine map"},
-        {sizeof(pronk_param_decl), "friction_coefficient", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.8", "",
-         "mu of the reward's friction-cone term"},
-        {sizeof(pronk_param_decl), "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 2, "0.15 0.40", "m",
-         "trunk height band of the reward's workspace term (Aliengo: 0.20 0.60)"},
-        {sizeof(pronk_param_decl), "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
-         "sigma_e of the landing reward exp(-e / sigma_e)"},
-        {sizeof(pronk_param_decl), "apex_clearance", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
-         "safety filter: the CoM apex must clear the target's standing CoM height by this"},
-        {sizeof(pronk_param_decl), "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
-         "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
-        {sizeof(pronk_param_decl), "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
-         "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
-         "torque check, under the 'motor' model)"},
-    };
-    d.insert(d.end(), own.begin(), own.end());
-    return d;
-  }();
-  return decls;
-}
-
 struct EnvironmentSettings {
   JumpSettings jump;
   double duration = 1.5;
@@ -113,10 +61,7 @@ struct EnvironmentSettings {
 EnvironmentSettings readSettings(const ParamReader& read) {
   EnvironmentSettings s;
   s.jump.hold = readHoldSettings(read);
-  s.jump.start_delay = read.real("start_delay");
-  s.jump.feedforward = feedforwardFromName(read.string("feedforward"));
-  s.jump.flight_kp_division = read.real("flight_kp_division");
-  s.jump.momentum_gain = read.real("momentum_gain");
+  readCommonJumpSettings(read, &s.jump);
   s.duration = read.real("duration");
   const std::vector<double> lo = read.vector("action_min"), hi = read.vector("action_max");
   for (int i = 0; i < kActionSize; ++i) s.ranges.bounds[i] = {lo[i], hi[i]};
@@ -508,7 +453,7 @@ pronk_status create(const pronk_host_api* host, const pronk_param_value* params,
   return guarded(error, error_size, [&] {
     if (!instance) throw InvalidArgument("no instance pointer");
     *instance = nullptr;
-    const auto& decls = paramDecls();
+    const std::vector<pronk_param_decl>& decls = environmentParamDecls();
     const ParamReader read(params, param_count, decls.data(), static_cast<int32_t>(decls.size()));
     *instance = new JumpEnvironment(host, readSettings(read));
   });
@@ -576,8 +521,8 @@ const pronk_factory* jumpEnvironmentFactory() {
       "jump",
       "one jump to a target per episode: 6 target numbers in, 13 raw jump parameters, the paper's reward; "
       "safety filter before the jump; prior_action is the analytic ballistic planner",
-      static_cast<int32_t>(paramDecls().size()),
-      paramDecls().data(),
+      static_cast<int32_t>(environmentParamDecls().size()),
+      environmentParamDecls().data(),
       0,
       kObservationSize,
       kActionSize,

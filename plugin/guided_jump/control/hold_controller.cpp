@@ -5,39 +5,12 @@
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "abi/abi_boundary.h"
 #include "method/force_distribution.h"
 
 namespace pronk::guided_jump {
-
-const pronk_param_decl kHoldParamDecls[5] = {
-    {sizeof(pronk_param_decl), "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad",
-     "joint stiffness towards the stance"},
-    {sizeof(pronk_param_decl), "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad", "joint damping"},
-    {sizeof(pronk_param_decl), "stance", PRONK_PARAM_VECTOR, 0, -3.2, 3.2, 3, "0 0.75 -1.5", "rad",
-     "joint positions held by every leg: hip, thigh, calf"},
-    {sizeof(pronk_param_decl), "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
-     "1: feet in contact carry the weight through J^T f; 0: PD only"},
-    {sizeof(pronk_param_decl), "motor", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "effort", "", kMotorDoc},
-};
-
-HoldSettings readHoldSettings(const ParamReader& read) {
-  HoldSettings s;
-  s.kp = read.real("kp");
-  s.kd = read.real("kd");
-  const std::vector<double> stance = read.vector("stance");
-  s.stance = {stance[0], stance[1], stance[2]};
-  s.gravity_compensation = read.integer("gravity_compensation") != 0;
-  s.motor = motorModelFromName(read.string("motor"));
-  return s;
-}
-
-jump::MotorModel motorModelFromName(const std::string& name) {
-  if (name == "dc") return jump::MotorModel::kDcMotor;
-  if (name == "effort") return jump::MotorModel::kEffortBox;
-  throw InvalidArgument("parameter 'motor': '" + name + "' is neither dc nor effort");
-}
 
 std::vector<jump::MotorLimits> motorLimitsFromHost(const pronk_host_api* host, int joint_count) {
   std::vector<jump::MotorLimits> motors(static_cast<size_t>(joint_count));

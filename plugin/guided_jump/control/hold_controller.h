@@ -9,12 +9,10 @@
 #pragma once
 
 #include <array>
-#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
-#include "abi/plugin_params.h"
 #include "method/motor_model.h"
 #include "pronk/plugin_abi.h"
 
@@ -28,22 +26,9 @@ struct HoldSettings {
   jump::MotorModel motor = jump::MotorModel::kEffortBox;
 };
 
-// The `motor` parameter's meaning (for the declarations).
-inline constexpr const char* kMotorDoc =
-    "joint motors: dc (torque falls linearly with speed to none at the URDF velocity limit, the paper's DC motor) "
-    "or effort (the URDF effort limit at any speed)";
-// "dc" or "effort"; throws InvalidArgument naming the parameter for any other name.
-jump::MotorModel motorModelFromName(const std::string& name);
-
 // Each joint's effort and velocity limits from the host (infinity where the
 // model gives none).
 std::vector<jump::MotorLimits> motorLimitsFromHost(const pronk_host_api* host, int joint_count);
-
-// The parameters a HoldSettings is read from, shared by both factories.
-extern const pronk_param_decl kHoldParamDecls[5];
-
-// The settings from kHoldParamDecls' parameters (throws InvalidArgument).
-HoldSettings readHoldSettings(const ParamReader& read);
 
 class HoldController {
  public:

@@ -178,13 +178,6 @@ void JumpController::startThrust(const pronk_robot_state& s) {
   enter(JumpPhase::kThrust, s.time, detail);
 }
 
-Feedforward feedforwardFromName(const std::string& name) {
-  if (name == "gravity") return Feedforward::kGravity;
-  if (name == "dynamic") return Feedforward::kDynamic;
-  if (name == "dynamic_angular") return Feedforward::kDynamicAngular;
-  throw InvalidArgument("parameter 'feedforward': '" + name + "' is none of gravity, dynamic, dynamic_angular");
-}
-
 std::optional<CentroidalMomentum> centroidalMomentum(const pronk_host_api* host) {
   if (host->struct_size < offsetof(pronk_host_api, centroidal_momentum) + sizeof(host->centroidal_momentum) ||
       !host->centroidal_momentum) {

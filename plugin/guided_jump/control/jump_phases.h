@@ -53,14 +53,8 @@
 
 namespace pronk::guided_jump {
 
+// The thrust's feed-forward (parameter `feedforward`, abi/jump_params.h).
 enum class Feedforward { kGravity, kDynamic, kDynamicAngular };
-// The `feedforward` parameter's values and their meaning (for the declarations).
-inline constexpr const char* kFeedforwardDoc =
-    "thrust feed-forward: gravity (m g, the paper's), dynamic (m (a_ref + g)) or dynamic_angular (dynamic and the "
-    "orientation plan's rate of angular momentum)";
-// "gravity", "dynamic", "dynamic_angular"; throws InvalidArgument naming the
-// parameter for any other name.
-Feedforward feedforwardFromName(const std::string& name);
 
 struct JumpSettings {
   HoldSettings hold;                 // gains, stance (= landing pose), gravity compensation

@@ -1,0 +1,149 @@
+#include "abi/jump_params.h"
+
+#include <string>
+
+#include "abi/abi_boundary.h"
+#include "method/action_mapping.h"
+#include "method/string_format.h"
+
+namespace pronk::guided_jump {
+namespace {
+
+constexpr uint32_t kDeclSize = sizeof(pronk_param_decl);
+
+constexpr const char* kMotorDoc =
+    "joint motors: dc (torque falls linearly with speed to none at the URDF velocity limit, the paper's DC motor) "
+    "or effort (the URDF effort limit at any speed)";
+constexpr const char* kFeedforwardDoc =
+    "thrust feed-forward: gravity (m g, the paper's), dynamic (m (a_ref + g)) or dynamic_angular (dynamic and the "
+    "orientation plan's rate of angular momentum)";
+
+// The stance controller's (control/hold_controller.h), both factories.
+const pronk_param_decl kHoldParamDecls[] = {
+    {kDeclSize, "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad", "joint stiffness towards the stance"},
+    {kDeclSize, "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad", "joint damping"},
+    {kDeclSize, "stance", PRONK_PARAM_VECTOR, 0, -3.2, 3.2, 3, "0 0.75 -1.5", "rad",
+     "joint positions held by every leg: hip, thigh, calf"},
+    {kDeclSize, "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
+     "1: feet in contact carry the weight through J^T f; 0: PD only"},
+    {kDeclSize, "motor", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "effort", "", kMotorDoc},
+};
+
+// The phase machine's (control/jump_phases.h), both factories.
+const pronk_param_decl kStartDelay = {kDeclSize, "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
+                                      "standing time before the thrust"};
+const pronk_param_decl kFlightKpDivision = {kDeclSize, "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3",
+                                            "", "Kp is divided by this from lift-off to touchdown"};
+const pronk_param_decl kMomentumGain = {
+    kDeclSize, "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
+    "thrust: the trunk turns against the touchdown attitude error the whole-body angular momentum predicts, at this "
+    "rate per rad/s (0: off, the paper's)"};
+// Both factories too, but each with its own default (see the lists below).
+pronk_param_decl feedforwardDecl(const char* default_value) {
+  return {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, default_value, "", kFeedforwardDoc};
+}
+
+std::string rangeText(bool upper) {
+  const jump::ActionRanges r = jump::go1ActionRanges();
+  std::string text;
+  for (int i = 0; i < jump::kActionSize; ++i) {
+    text += (i ? " " : "") + jump::format("%.15g", upper ? r.bounds[i].max : r.bounds[i].min);
+  }
+  return text;
+}
+
+}  // namespace
+
+const std::vector<pronk_param_decl>& controllerParamDecls() {
+  static const std::vector<pronk_param_decl> decls = [] {
+    std::vector<pronk_param_decl> d(std::begin(kHoldParamDecls), std::end(kHoldParamDecls));
+    // The action is a vector of any size so that its default can be empty ("no
+    // action: hold the stance"); create() accepts 0 or 13 numbers.
+    d.push_back({kDeclSize, "action", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
+                 "empty: hold the stance; or the 13 physical jump parameters T_th r_p theta_p r_v theta_v "
+                 "k d roll pitch yaw roll_rate pitch_rate yaw_rate (s, m, rad, m/s, rad, 1, m, rad, rad/s)"});
+    d.push_back(kStartDelay);
+    // The paper's gravity compensation alone, so that the controller on its own
+    // reproduces the paper's thrust; the environment defaults to dynamic.
+    d.push_back(feedforwardDecl("gravity"));
+    d.push_back(kFlightKpDivision);
+    d.push_back({kDeclSize, "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
+                 "the landing surface's height above the take-off surface (when the legs extend)"});
+    d.push_back(kMomentumGain);
+    return d;
+  }();
+  return decls;
+}
+
+const std::vector<pronk_param_decl>& environmentParamDecls() {
+  static const std::string range_min = rangeText(false), range_max = rangeText(true);
+  static const std::vector<pronk_param_decl> decls = [] {
+    std::vector<pronk_param_decl> d(std::begin(kHoldParamDecls), std::end(kHoldParamDecls));
+    const std::vector<pronk_param_decl> own = {
+        {kDeclSize, "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s", "episode length, from reset"},
+        kStartDelay,
+        // The planned acceleration in the feed-forward: the PD alone lags a hard
+        // thrust (measured on the Go1's 0.7 m jump: 0.2 m/s short at lift-off, 11 cm
+        // off instead of 3; docs/results.md). The controller keeps the paper's gravity.
+        feedforwardDecl("dynamic"),
+        kFlightKpDivision,
+        kMomentumGain,
+        {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
+         "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
+         "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
+        {kDeclSize, "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_max.c_str(), "SI",
+         "upper ends of the 13 action ranges"},
+        {kDeclSize, "raw_limit", PRONK_PARAM_REAL, 0, 0.01, 100.0, 0, "5", "",
+         "raw policy outputs are clipped to +-this before the affine map"},
+        {kDeclSize, "friction_coefficient", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.8", "",
+         "mu of the reward's friction-cone term"},
+        {kDeclSize, "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 2, "0.15 0.40", "m",
+         "trunk height band of the reward's workspace term (Aliengo: 0.20 0.60)"},
+        {kDeclSize, "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
+         "sigma_e of the landing reward exp(-e / sigma_e)"},
+        {kDeclSize, "apex_clearance", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
+         "safety filter: the CoM apex must clear the target's standing CoM height by this"},
+        {kDeclSize, "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
+         "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
+        {kDeclSize, "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
+         "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
+         "torque check, under the 'motor' model)"},
+    };
+    d.insert(d.end(), own.begin(), own.end());
+    return d;
+  }();
+  return decls;
+}
+
+HoldSettings readHoldSettings(const ParamReader& read) {
+  HoldSettings s;
+  s.kp = read.real("kp");
+  s.kd = read.real("kd");
+  const std::vector<double> stance = read.vector("stance");
+  s.stance = {stance[0], stance[1], stance[2]};
+  s.gravity_compensation = read.integer("gravity_compensation") != 0;
+  s.motor = motorModelFromName(read.string("motor"));
+  return s;
+}
+
+void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
+  s->start_delay = read.real("start_delay");
+  s->feedforward = feedforwardFromName(read.string("feedforward"));
+  s->flight_kp_division = read.real("flight_kp_division");
+  s->momentum_gain = read.real("momentum_gain");
+}
+
+jump::MotorModel motorModelFromName(const std::string& name) {
+  if (name == "dc") return jump::MotorModel::kDcMotor;
+  if (name == "effort") return jump::MotorModel::kEffortBox;
+  throw InvalidArgument("parameter 'motor': '" + name + "' is neither dc nor effort");
+}
+
+Feedforward feedforwardFromName(const std::string& name) {
+  if (name == "gravity") return Feedforward::kGravity;
+  if (name == "dynamic") return Feedforward::kDynamic;
+  if (name == "dynamic_angular") return Feedforward::kDynamicAngular;
+  throw InvalidArgument("parameter 'feedforward': '" + name + "' is none of gravity, dynamic, dynamic_angular");
+}
+
+}  // namespace pronk::guided_jump
