@@ -36,6 +36,7 @@
 #include "method/leg_ik.h"
 #include "method/orientation_trajectory.h"
 #include "method/planner.h"
+#include "method/safety_filter.h"
 #include "method/thrust_trajectory.h"
 
 namespace pronk::jump {

@@ -4,9 +4,10 @@
 //                    the start, in the robot's initial heading frame;
 //   action (13):     the policy's raw outputs, clipped to +-raw_limit and mapped
 //                    affinely onto the action ranges (method/action_mapping.h);
-//   act():           the safety filter runs before anything moves: a thrust path
-//                    that loses a foot's reach, or a flight whose apex stays
-//                    below the target, is rejected (PRONK_REJECTED, with why);
+//   act():           the safety filter (method/safety_filter.h) runs before
+//                    anything moves: a flight whose apex stays below the target,
+//                    a thrust path that loses a foot's reach, or one the motors
+//                    cannot push, is rejected (PRONK_REJECTED, with why);
 //   step():          the guided_jump phase machine (control/jump_phases.h);
 //   finish():        the paper's reward with every term reported as a metric
 //                    (method/reward.h), plus the plan's predictions;
@@ -34,6 +35,7 @@
 #include "method/orientation_trajectory.h"
 #include "method/planner.h"
 #include "method/reward.h"
+#include "method/safety_filter.h"
 
 namespace pronk::guided_jump {
 namespace {
@@ -247,24 +249,13 @@ class JumpEnvironment {
     }
 
     // The safety filter: nothing runs that cannot work.
-    jump::SafetyCheck check;
-    check.gravity = gravity_;
-    check.apex_clearance = settings_.apex_clearance;
-    const jump::SafetyVerdict verdict = check({lift_off.position, lift_off.velocity}, target_com);
-    if (!verdict) throw Rejected(std::string(jump::safetyIssueName(verdict.issue)) + ": " + verdict.reason);
-    if (std::optional<jump::LegWorkspace> ws = workspace()) {
-      if (std::optional<std::string> out =
-              jump::thrustLeavesWorkspace(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws)) {
-        throw Rejected("leg_workspace: " + *out);
-      }
-      const double shortfall =
-          jump::thrustSpeedShortfall(mapped.action, azimuth, com_start, Eigen::Vector3d::Zero(), *ws, gravity_);
-      metric("predicted_speed_shortfall", shortfall);
-      if (shortfall > ws->max_speed_shortfall) {
-        throw Rejected("torque_limit: " + jump::thrustExceedsTorque(mapped.action, azimuth, com_start,
-                                                                    Eigen::Vector3d::Zero(), *ws, gravity_)
-                                              .value_or("the torque check failed"));
-      }
+    jump::SafetyCheck ballistic;
+    ballistic.gravity = gravity_;
+    ballistic.apex_clearance = settings_.apex_clearance;
+    const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, workspace());
+    if (safety.speed_shortfall) metric("predicted_speed_shortfall", *safety.speed_shortfall);
+    if (!safety.verdict) {
+      throw Rejected(std::string(jump::safetyIssueName(safety.verdict.issue)) + ": " + safety.verdict.reason);
     }
 
     JumpSettings js = settings_.jump;

@@ -5,8 +5,9 @@
 // This file holds that motion, the events it predicts (apex, landing on a
 // horizontal surface, the paper's heuristic apex and touchdown instants), its
 // inverse used by the planner (the lift-off velocity that reaches a target, and
-// the paper's hyperbola of such velocities), and the safety check that rejects
-// a lift-off state before the jump runs.
+// the paper's hyperbola of such velocities), and the landing's stopping offset.
+// The check that rejects a lift-off state before the jump runs is the safety
+// filter's (safety_filter.h).
 //
 // Frame: any frame whose z axis points up (the jump frame of docs/method.md, or
 // the world). "Height" always means the z coordinate. Units: m, s, m/s.
@@ -14,10 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <functional>
-#include <limits>
 #include <optional>
-#include <string>
 
 namespace pronk::jump {
 
@@ -154,43 +152,6 @@ class LiftOffHyperbola {
   double dz_ = 0.0;
   double g_ = 0.0;
   double min_elevation_ = 0.0;  // computed once: both the planner and atElevation need it
-};
-
-// Why a lift-off state was rejected.
-enum class SafetyIssue {
-  kNone,               // safe
-  kNotFinite,          // a position, velocity or the target is NaN or infinite
-  kApexBelowTarget,    // the apex does not reach target height + apex_clearance
-  kTargetUnreachable,  // the CoM never comes down to the target height, or lands too far from the target
-  kOutsideWorkspace,   // the caller's workspace predicate rejects the lift-off position
-};
-const char* safetyIssueName(SafetyIssue issue);  // "none", "not_finite", "apex_below_target", ...
-
-struct SafetyVerdict {
-  SafetyIssue issue = SafetyIssue::kNone;
-  std::string reason;  // empty when safe; otherwise one sentence with the numbers
-  bool safe() const { return issue == SafetyIssue::kNone; }
-  explicit operator bool() const { return safe(); }
-};
-
-// The paper's "physical feasibility check": reject a planned lift-off state
-// before the jump runs. `target` is where the plan wants the CoM at touchdown
-// (its z is the touchdown CoM height). Checks, in this order (the first failure wins):
-//   1. every input is finite;
-//   2. apex height >= target.z + apex_clearance (the paper's test is clearance 0);
-//   3. the CoM comes down through target.z (descending root exists) and, when
-//      max_landing_miss is finite, lands within max_landing_miss (horizontal
-//      distance, m) of the target;
-//   4. workspace(lift-off position) is true, when a predicate is given.
-struct SafetyCheck {
-  Eigen::Vector3d gravity = standardGravity();
-  double apex_clearance = 0.0;                                        // m
-  double max_landing_miss = std::numeric_limits<double>::infinity();  // m
-  // Caller-supplied: true when the lift-off CoM position is inside the leg
-  // workspace (e.g. all feet reachable by IK, see leg_ik.h). Empty: not checked.
-  std::function<bool(const Eigen::Vector3d& lift_off_position)> workspace;
-
-  SafetyVerdict operator()(const FlightState& lift_off, const Eigen::Vector3d& target) const;
 };
 
 // The landing's stopping offset: where a compliant landing brings the CoM to rest,

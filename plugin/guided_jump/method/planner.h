@@ -25,7 +25,8 @@
 //   6. yaw split: lift-off yaw psi_lo and yaw rate psi_dot with
 //      psi_lo + psi_dot * T_flight = target yaw;
 //   7. when leg geometry is given, the whole thrust path must keep all four
-//      stance feet reachable (feetReachable); a fixed candidate list of
+//      stance feet reachable and in support, within the motors' torque (the
+//      safety filter's path checks, safety_filter.h); a fixed candidate list of
 //      lift-off heights, offsets, thrust durations and yaw splits is searched
 //      in order, and the first feasible candidate wins;
 //   8. when the motors' torque (thrustExceedsTorque) refuses every candidate, the
@@ -45,6 +46,7 @@
 #include "method/explosive_phase.h"
 #include "method/leg_ik.h"
 #include "method/motor_model.h"
+#include "method/safety_filter.h"
 #include "method/thrust_trajectory.h"
 
 namespace pronk::jump {
@@ -56,81 +58,6 @@ struct JumpTarget {
   Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
   double yaw_rad = 0.0;
 };
-
-// Stance feet the legs must keep reaching during the thrust.
-struct LegWorkspace {
-  std::array<LegGeometry, kLegCount> legs{};
-  std::array<Eigen::Vector3d, kLegCount> feet{};  // stance feet in S, fixed during the thrust
-  Eigen::Vector3d com_to_trunk = Eigen::Vector3d::Zero();  // trunk centre - CoM, trunk frame, assumed constant
-  int path_samples = 60;  // samples of the thrust path (plus both ends) checked
-  bool require_within_limits = true;
-  // For the torque prediction (thrustExceedsTorque): the whole robot's mass (0:
-  // torques not checked), the motor limits of each leg's hip, thigh and calf
-  // (default: none), and the motor model that turns them into the torque
-  // available at a joint speed (method/motor_model.h).
-  double mass = 0.0;
-  std::array<MotorLimits, 3> joint_motors{};
-  MotorModel motor = MotorModel::kEffortBox;
-  // The planned lift-off speed the motors may fall short of, m/s: where a joint
-  // needs more torque than its motor delivers, the ground force shrinks by that
-  // ratio, and the lost acceleration is integrated over the thrust.
-  double max_speed_shortfall = 0.1;
-};
-
-// The workspace of a robot standing at rest with every leg at joint angles
-// `stance_q` (hip, thigh, calf) and the trunk centre at start_com + com_to_trunk
-// (trunk yaw 0): the feet are the forward kinematics of that pose.
-LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, const Eigen::Vector3d& stance_q,
-                               const Eigen::Vector3d& start_com, const Eigen::Vector3d& com_to_trunk);
-
-// Where a thrust leaves the leg workspace: samples the thrust path of `action`
-// (ThrustPlan at `azimuth` from com_start about polar_origin, with the action's
-// orientation Bezier from a level start) and returns, for the first sample at
-// which a stance foot of `workspace` is out of reach (the lift-off end is
-// checked first, then the path from its start), a sentence saying when and
-// where; std::nullopt when every foot stays reachable.
-std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
-                                                 const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
-                                                 const LegWorkspace& workspace);
-
-// Where a thrust would need a stance foot to pull: samples the thrust path of
-// `action` and, at each sample, shares the vertical force m (a_z + g) of the
-// planned CoM acceleration over the stance feet `feet` (in S, on one level) by
-// the minimum-norm solution that puts the centre of pressure at the zero-moment
-// point c_xy - c_z' a_xy / (a_z + g) (c_z' the CoM height above the feet). The
-// controller distributes its feed-forward the same way. Returns a sentence saying
-// when a foot's share drops below `min_share` of the mean share (the first such
-// sample), std::nullopt when none does. A countermovement's initial
-// acceleration 2 v_b / T_th moves the zero-moment point h a / g away: for a
-// diagonal jump out of the diamond spanned by the feet, so that a foot would have
-// to pull, lifts instead, and the robot tips about the other diagonal.
-std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double azimuth,
-                                               const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
-                                               const std::array<Eigen::Vector3d, kLegCount>& feet,
-                                               const Eigen::Vector3d& gravity, double min_share, int path_samples);
-
-// Where a thrust would need more joint torque than the motors have: at each
-// sample of the thrust path the force m (a - g) of the planned CoM acceleration
-// is shared over the stance feet by the minimum-norm distribution with no moment
-// about the CoM (the controller's feed-forward, force_distribution.h), and each
-// leg's torques -J(q)^T f follow from the leg's IK at that trunk pose. Its joint
-// speeds J(q)^-1 x' follow from the planned CoM velocity and trunk angular
-// velocity (x the stance foot in the trunk frame). Where a joint needs more than
-// its motor delivers at that speed (workspace.motor), the whole ground force is
-// taken to shrink by the ratio; the acceleration so lost, integrated over the
-// thrust, is the lift-off speed the motors fall short by. Returns a sentence
-// with that shortfall and the tightest joint (when, how much) when it exceeds
-// workspace.max_speed_shortfall, std::nullopt otherwise or when workspace.mass
-// is 0. The legs' own inertia is not in the prediction.
-std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
-                                               const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
-                                               const LegWorkspace& workspace, const Eigen::Vector3d& gravity);
-
-// The lift-off speed shortfall thrustExceedsTorque compares with
-// workspace.max_speed_shortfall, m/s (NaN when workspace.mass is 0).
-double thrustSpeedShortfall(const JumpAction& action, double azimuth, const Eigen::Vector3d& com_start,
-                            const Eigen::Vector3d& polar_origin, const LegWorkspace& workspace,
-                            const Eigen::Vector3d& gravity);
 
 struct PlannerConfig {
   ActionRanges ranges = go1ActionRanges();

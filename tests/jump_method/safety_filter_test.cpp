@@ -1,0 +1,162 @@
+// The safety filter (method/safety_filter.h): the paper's ballistic feasibility
+// check on a lift-off state, and the whole filter on an action, in its order.
+#include "method/safety_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "method/planner.h"
+
+namespace pronk::jump {
+namespace {
+
+// Lift-off CoM of the ballistic tests (ballistics_test.cpp).
+const Eigen::Vector3d kLiftOff(0.1, 0.02, 0.36);
+
+TEST(SafetyCheck, AcceptsAPlanThatLandsOnTheTarget) {
+  const Eigen::Vector3d target(0.8, 0.1, 0.31);
+  const LiftOffVelocity v = LiftOffHyperbola(kLiftOff, target).atFlightTime(0.4);
+  SafetyCheck check;
+  check.max_landing_miss = 0.01;
+  check.workspace = [](const Eigen::Vector3d&) { return true; };
+  const SafetyVerdict verdict = check(FlightState{kLiftOff, v.velocity}, target);
+  EXPECT_TRUE(verdict.safe()) << verdict.reason;
+  EXPECT_TRUE(static_cast<bool>(verdict));
+  EXPECT_TRUE(verdict.reason.empty());
+  EXPECT_STREQ(safetyIssueName(verdict.issue), "none");
+}
+
+TEST(SafetyCheck, RejectsAnApexBelowTheTarget) {
+  // v_z = 1 m/s from 0.36 m: apex 0.411 m, target on a 0.3 m platform at 0.61 m.
+  const FlightState lo{kLiftOff, Eigen::Vector3d(1.0, 0.0, 1.0)};
+  const SafetyVerdict verdict = SafetyCheck{}(lo, Eigen::Vector3d(0.5, 0.0, 0.61));
+  EXPECT_FALSE(verdict.safe());
+  EXPECT_EQ(verdict.issue, SafetyIssue::kApexBelowTarget);
+  EXPECT_NE(verdict.reason.find("apex"), std::string::npos) << verdict.reason;
+  EXPECT_NE(verdict.reason.find("0.61"), std::string::npos) << verdict.reason;
+
+  // Above the target, but not by the clearance the caller asks for.
+  SafetyCheck strict;
+  strict.apex_clearance = 0.1;
+  EXPECT_TRUE(SafetyCheck{}(lo, Eigen::Vector3d(0.1, 0, 0.36)).safe());
+  EXPECT_EQ(strict(lo, Eigen::Vector3d(0.1, 0, 0.36)).issue, SafetyIssue::kApexBelowTarget);
+}
+
+TEST(SafetyCheck, RejectsAnUnreachableTarget) {
+  // Jumping backward while the target is ahead.
+  const FlightState lo{kLiftOff, Eigen::Vector3d(-1.0, 0.0, 2.0)};
+  SafetyCheck check;
+  check.max_landing_miss = 0.2;
+  const SafetyVerdict verdict = check(lo, Eigen::Vector3d(0.6, 0.0, 0.31));
+  EXPECT_EQ(verdict.issue, SafetyIssue::kTargetUnreachable);
+  EXPECT_STREQ(safetyIssueName(verdict.issue), "target_unreachable");
+  EXPECT_NE(verdict.reason.find("from the target"), std::string::npos) << verdict.reason;
+
+  // A negative clearance lets the apex check pass, but the CoM never gets down to the target height.
+  SafetyCheck lax;
+  lax.apex_clearance = -1.0;
+  EXPECT_EQ(lax(FlightState{kLiftOff, Eigen::Vector3d(1, 0, 0.5)}, Eigen::Vector3d(0.3, 0, 0.8)).issue,
+            SafetyIssue::kTargetUnreachable);
+}
+
+TEST(SafetyCheck, RejectsALiftOffOutsideTheWorkspace) {
+  const Eigen::Vector3d target(0.5, 0.0, 0.31);
+  const LiftOffVelocity v = LiftOffHyperbola(kLiftOff, target).leastSpeed();
+  SafetyCheck check;
+  Eigen::Vector3d seen = Eigen::Vector3d::Constant(NAN);
+  check.workspace = [&seen](const Eigen::Vector3d& p) {
+    seen = p;
+    return p.z() < 0.3;  // lift-off at 0.36 m is too high for these legs
+  };
+  const SafetyVerdict verdict = check(FlightState{kLiftOff, v.velocity}, target);
+  EXPECT_EQ(verdict.issue, SafetyIssue::kOutsideWorkspace);
+  EXPECT_EQ(seen, kLiftOff);
+  EXPECT_NE(verdict.reason.find("workspace"), std::string::npos);
+}
+
+TEST(SafetyCheck, RejectsNonFiniteStates) {
+  const SafetyVerdict verdict = SafetyCheck{}(FlightState{kLiftOff, Eigen::Vector3d(NAN, 0, 1)}, kLiftOff);
+  EXPECT_EQ(verdict.issue, SafetyIssue::kNotFinite);
+  EXPECT_FALSE(verdict.reason.empty());
+}
+
+// The whole filter on the Go1's planned 0.4 m forward jump, with the planner's
+// workspace (feet on z = 0 under the standing robot, as in planner_test.cpp).
+class SafetyFilterOnAPlan : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    cfg_.start_com = {0.0, 0.0, 0.3081};
+    cfg_.workspace = standingWorkspace(go1Legs(), Eigen::Vector3d(0.0, 0.75, -1.5), cfg_.start_com,
+                                       Eigen::Vector3d(0.0134, 0.0, 0.0036));
+    cfg_.workspace->mass = 12.7;  // the Go1's, with its motors' effort limits
+    cfg_.workspace->joint_motors = {MotorLimits{23.7}, MotorLimits{23.7}, MotorLimits{35.55}};
+    plan_ = planJump({{0.4, 0.0, 0.0}, 0.0}, cfg_);
+    ASSERT_TRUE(plan_.feasible) << plan_.reason;
+    ballistic_.gravity = cfg_.gravity;
+  }
+  ThrustPlan thrust() const { return ThrustPlan(plan_.action, plan_.azimuth_rad, cfg_.start_com, cfg_.polarOrigin()); }
+  SafetyFilterResult filter(const std::optional<LegWorkspace>& ws) const {
+    return safetyFilter(plan_.action, thrust(), plan_.target_com, ballistic_, ws);
+  }
+
+  PlannerConfig cfg_;
+  PlannedJump plan_;
+  SafetyCheck ballistic_;
+};
+
+TEST_F(SafetyFilterOnAPlan, PassesAPlannedJumpAndReportsItsSpeedShortfall) {
+  const SafetyFilterResult r = filter(cfg_.workspace);
+  EXPECT_TRUE(r.verdict.safe()) << r.verdict.reason;
+  ASSERT_TRUE(r.speed_shortfall.has_value());
+  EXPECT_EQ(*r.speed_shortfall, plan_.speed_shortfall);
+  // Without a workspace only the ballistic check runs.
+  const SafetyFilterResult ballistic_only = filter(std::nullopt);
+  EXPECT_TRUE(ballistic_only.verdict.safe());
+  EXPECT_FALSE(ballistic_only.speed_shortfall.has_value());
+}
+
+TEST_F(SafetyFilterOnAPlan, TheBallisticCheckComesFirst) {
+  // The target 0.2 m above where the plan's apex goes; the motors are too weak as well.
+  LegWorkspace weak = *cfg_.workspace;
+  weak.joint_motors = {MotorLimits{1.0}, MotorLimits{1.0}, MotorLimits{1.0}};
+  const Eigen::Vector3d high(plan_.target_com.x(), 0.0, plan_.apex.z() + 0.2);
+  const SafetyFilterResult r = safetyFilter(plan_.action, thrust(), high, ballistic_, weak);
+  EXPECT_EQ(r.verdict.issue, SafetyIssue::kApexBelowTarget);
+  EXPECT_FALSE(r.speed_shortfall.has_value());
+}
+
+TEST_F(SafetyFilterOnAPlan, RejectsAThrustPathThatLosesAFootBeforeCheckingTorque) {
+  LegWorkspace far = *cfg_.workspace;
+  far.feet[0].x() += 0.5;  // FR's stance foot out of its reach from the start
+  const SafetyFilterResult r = filter(far);
+  EXPECT_EQ(r.verdict.issue, SafetyIssue::kLegWorkspace);
+  EXPECT_STREQ(safetyIssueName(r.verdict.issue), "leg_workspace");
+  EXPECT_EQ(r.verdict.reason,
+            thrustLeavesWorkspace(plan_.action, plan_.azimuth_rad, cfg_.start_com, cfg_.polarOrigin(), far).value_or(""));
+  EXPECT_FALSE(r.speed_shortfall.has_value());
+}
+
+TEST_F(SafetyFilterOnAPlan, RejectsMotorsThatMissTheLiftOffSpeedAndSaysWhichJoint) {
+  LegWorkspace weak = *cfg_.workspace;
+  weak.joint_motors = {MotorLimits{23.7 / 4}, MotorLimits{23.7 / 4}, MotorLimits{35.55 / 4}};
+  const SafetyFilterResult r = filter(weak);
+  EXPECT_EQ(r.verdict.issue, SafetyIssue::kTorqueLimit);
+  EXPECT_STREQ(safetyIssueName(r.verdict.issue), "torque_limit");
+  EXPECT_EQ(r.verdict.reason, thrustExceedsTorque(plan_.action, plan_.azimuth_rad, cfg_.start_com, cfg_.polarOrigin(),
+                                                  weak, cfg_.gravity)
+                                  .value_or(""));
+  ASSERT_TRUE(r.speed_shortfall.has_value());
+  EXPECT_GT(*r.speed_shortfall, weak.max_speed_shortfall);
+  // Without the robot's mass the torques are not predicted: no shortfall to compare.
+  weak.mass = 0.0;
+  const SafetyFilterResult massless = filter(weak);
+  EXPECT_TRUE(massless.verdict.safe());
+  ASSERT_TRUE(massless.speed_shortfall.has_value());
+  EXPECT_TRUE(std::isnan(*massless.speed_shortfall));
+}
+
+}  // namespace
+}  // namespace pronk::jump
