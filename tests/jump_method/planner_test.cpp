@@ -533,6 +533,30 @@ TEST(Planner, RejectsBadInput) {
   EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
 }
 
+TEST(Planner, PriorJumpTurnsHalfOnTheGroundAndAimsShortByTheLandingStop) {
+  PlannerConfig cfg = go1Config(true);
+  const JumpTarget target{{0.4, 0.1, 0.0}, 0.4};
+  // No stop: the plan of the first yaw split, half of the turn on the ground.
+  PlannerConfig half = cfg;
+  half.yaw_at_lift_off_fraction = {0.5};
+  const PlannedJump split = planJump(target, half);
+  ASSERT_TRUE(split.feasible) << split.reason;
+  const auto none = [](const Eigen::Vector3d&) { return Eigen::Vector2d::Zero().eval(); };
+  const PlannedJump unaimed = planPriorJump(target, cfg, none);
+  EXPECT_EQ(toVector(unaimed.action), toVector(split.action));
+  EXPECT_NEAR(unaimed.action.liftoff_rpy_rad.z(), 0.2, 1e-12);
+  // A landing that stops the CoM 5 cm further along x: the touchdown is aimed 5 cm short.
+  const auto ahead = [](const Eigen::Vector3d& v) {
+    EXPECT_LT(v.z(), 0.0);  // the touchdown velocity, falling
+    return Eigen::Vector2d(0.05, 0.0);
+  };
+  const PlannedJump aimed = planPriorJump(target, cfg, ahead);
+  ASSERT_TRUE(aimed.feasible) << aimed.reason;
+  EXPECT_NEAR(aimed.target_com.x(), split.target_com.x() - 0.05, 1e-12);
+  EXPECT_NEAR(aimed.target_com.y(), split.target_com.y(), 1e-12);
+  EXPECT_NEAR(aimed.landing_point.x(), split.landing_point.x() - 0.05, 1e-9);
+}
+
 TEST(Planner, ReplanCancelsAConstantLiftOffError) {
   const PlannerConfig cfg = go1Config(false);
   // The prototype's typical lag: horizontal velocity overshoot, 1 cm position error.

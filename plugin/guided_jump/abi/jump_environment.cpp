@@ -171,34 +171,11 @@ class JumpEnvironment {
     config.start_com = Eigen::Vector3d(0, 0, standing_height_);
     config.standing_com_height = standing_height_;
     if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
-    // Turn on the ground where the legs allow it: a fast yaw spin in the air couples
-    // into roll through the swinging legs (measured: a 45 deg diagonal jump with all
-    // its yaw in flight tumbled), while yaw done in the thrust costs nothing in flight.
     jump::JumpTarget target;
     target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
     target.yaw_rad = observation[3];
-    // The planner searches its other rule parameters before the yaw split, so the
-    // split is chosen here, half the yaw on the ground first (measured: all of a 45 deg turn in the thrust sat the robot down,
-    // all of it in flight tumbled it).
-    for (double fraction : {0.5, 0.25, 0.75}) {
-      config.yaw_at_lift_off_fraction = {fraction};
-      if (jump::planJump(target, config).feasible) break;
-      config.yaw_at_lift_off_fraction = {0.0};
-    }
-    // The landing stops the CoM beyond its touchdown point (landingStop in
-    // control/jump_phases.h): aim the touchdown that much short of the target, a few
-    // fixed-point rounds.
-    jump::PlannedJump plan = jump::planJump(target, config);
-    for (int round = 0; round < 4 && plan.feasible; ++round) {
-      Eigen::Vector3d v_touchdown = plan.lift_off.velocity;
-      v_touchdown.z() += gravity_.z() * plan.flight_time;
-      const Eigen::Vector2d stop = JumpController::landingStop(v_touchdown);
-      jump::JumpTarget aimed = target;
-      aimed.displacement.head<2>() -= stop;
-      const jump::PlannedJump next = jump::planJump(aimed, config);
-      if (!next.feasible) break;
-      plan = next;
-    }
+    // Aimed short by where the controller's landing will stop the CoM.
+    const jump::PlannedJump plan = jump::planPriorJump(target, config, &JumpController::landingStop);
     if (!plan.feasible && host_->log) {
       host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + plan.reason).c_str());
     }

@@ -608,6 +608,29 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
   return plan;
 }
 
+PlannedJump planPriorJump(const JumpTarget& target, PlannerConfig config, const LandingStop& landing_stop) {
+  PlannedJump plan;
+  for (double fraction : {0.5, 0.25, 0.75}) {
+    config.yaw_at_lift_off_fraction = {fraction};
+    plan = planJump(target, config);
+    if (plan.feasible) break;
+  }
+  if (!plan.feasible) {
+    config.yaw_at_lift_off_fraction = {0.0};
+    plan = planJump(target, config);
+  }
+  for (int round = 0; round < 4 && plan.feasible; ++round) {
+    Eigen::Vector3d v_touchdown = plan.lift_off.velocity;
+    v_touchdown.z() += config.gravity.z() * plan.flight_time;
+    JumpTarget aimed = target;
+    aimed.displacement.head<2>() -= landing_stop(v_touchdown);
+    const PlannedJump next = planJump(aimed, config);
+    if (!next.feasible) break;
+    plan = next;
+  }
+  return plan;
+}
+
 ReplannedJump replanJump(const JumpTarget& target, const PointState& lift_off_error, const PlannerConfig& config,
                          int max_iterations, double tolerance) {
   if (!lift_off_error.position.allFinite() || !lift_off_error.velocity.allFinite()) {

@@ -36,6 +36,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -171,6 +172,27 @@ struct PlannedJump {
 // Plans the jump. Never throws for an unreachable target (feasible = false with
 // a reason); throws std::invalid_argument for a non-finite target or a bad config.
 PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config = PlannerConfig());
+
+// Where the landing brings the CoM to rest, horizontally, from its touchdown
+// point, for the CoM velocity at touchdown (the controller's landing:
+// landingStopOffset with its gains, control/jump_phases.h).
+using LandingStop = std::function<Eigen::Vector2d(const Eigen::Vector3d& touchdown_velocity)>;
+
+// The jump environment's prior (`pronk run --policy ballistic`): planJump with
+// the yaw split chosen first, aimed short of the target by the landing stop.
+//   1. The yaw split: half the turn on the ground first, then a quarter, then
+//      three quarters, the first fraction with a feasible plan; all of it in
+//      flight when none has one (config.yaw_at_lift_off_fraction is replaced).
+//      planJump searches its other rule parameters before its yaw splits, so the
+//      split is chosen out here. Yaw turned in the thrust costs nothing in flight,
+//      while a fast yaw spin in the air couples into roll through the swinging
+//      legs (measured: a 45 deg turn all in the thrust sat the robot down, all in
+//      flight tumbled it).
+//   2. The landing stops the CoM landing_stop(v_touchdown) beyond its touchdown
+//      point: the touchdown is aimed that much short of the target, four
+//      fixed-point rounds from the plan's ballistic touchdown velocity; a round
+//      with no feasible plan ends them (the last feasible plan stands).
+PlannedJump planPriorJump(const JumpTarget& target, PlannerConfig config, const LandingStop& landing_stop);
 
 // Correction for a measured lift-off tracking error (the planner prototype's
 // target-correction scheme): assume the next jump's achieved lift-off state is
