@@ -1,5 +1,8 @@
-// Leg IK: the joint-space side of the paper's control ("Control": IK maps the
-// CoM/trunk reference to joint positions and velocities for the PD loop).
+// Leg IK for the planner and the safety filter: the thrust path's reach and its
+// joint torques and speeds. (The paper's "Control" maps the CoM/trunk reference
+// to joints by IK too; pronk's controller does that with Newton steps on the
+// host's leg kinematics, JumpController::legIk, which this exact solution does
+// not replace: see there.)
 // Analytic kinematics of a Unitree-style 3-DoF leg, everything in ONE frame,
 // the trunk frame (x forward, y left, z up, origin at the trunk centre):
 //
