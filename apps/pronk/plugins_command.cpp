@@ -39,6 +39,17 @@ int pluginsCommand(const CommonOptions& common) {
                   f->control_period > 0 ? (std::to_string(f->control_period) + " s").c_str() : "any");
       if (env) std::printf(", observation %d, action %d", f->observation_size, f->action_size);
       std::printf("\n");
+      if (env) {
+        const EnvironmentSchema schema = environmentSchema(*f);
+        int penalties = 0, times = 0;
+        for (const MetricSpec& m : schema.metrics) {
+          penalties += m.kind == MetricSpec::Kind::Penalty;
+          times += m.kind == MetricSpec::Kind::Time;
+        }
+        std::printf("              declares %zu metrics (%d reward cost terms, %d times), %zu task numbers, %zu video "
+                    "markers (ABI 1.3)\n",
+                    schema.metrics.size(), penalties, times, schema.task_names.size(), schema.markers.size());
+      }
       for (int32_t i = 0; i < f->param_count; ++i) {
         const pronk_param_decl& p = f->params[i];
         std::printf("              param %-22s default %-12s %s%s%s\n", p.name, p.default_value ? p.default_value : "(required)",

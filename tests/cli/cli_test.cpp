@@ -167,7 +167,10 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("jump"), std::string::npos);
-  EXPECT_NE(o.output.find("ABI 1.2"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("ABI 1.3"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
+            std::string::npos)
+      << o.output;
 }
 
 }  // namespace

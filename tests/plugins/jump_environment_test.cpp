@@ -120,11 +120,26 @@ TEST_F(JumpEnvironment, FinishReportsTheRewardAndEveryTerm) {
   const double reward = env_->finish(robot_.state());
   EXPECT_GE(reward, 0.0);
   EXPECT_LE(reward, 1.0);
-  for (const char* term : {"penalty_joint_position_limits", "penalty_friction_cone", "penalty_workspace",
-                           "penalty_lift_off_position", "penalty_touchdown_bounce", "penalty_action_limit",
-                           "landing_reward", "cost_gate", "reward_error_xy"}) {
+  for (const char* term : {"joint_position_limits", "friction_cone", "workspace", "lift_off_position",
+                           "touchdown_bounce", "action_limit", "landing_reward", "cost_gate", "reward_error_xy"}) {
     EXPECT_TRUE(robot_.metrics.count(term)) << term;
   }
+  // Every metric it reported is declared (ABI 1.3), the cost terms as penalties:
+  // the host's report files them by these declarations alone.
+  const EnvironmentSchema schema = environmentSchema(env_->factory());
+  for (const auto& [name, value] : robot_.metrics) {
+    const MetricSpec* spec = schema.find(name);
+    ASSERT_NE(spec, nullptr) << name << " is reported but not declared";
+  }
+  for (const char* term : {"joint_position_limits", "friction_cone", "action_limit"}) {
+    ASSERT_NE(schema.find(term), nullptr) << term;
+    EXPECT_EQ(schema.find(term)->kind, MetricSpec::Kind::Penalty) << term;
+  }
+  EXPECT_EQ(schema.find("landing_reward")->kind, MetricSpec::Kind::Value);
+  EXPECT_EQ(schema.find("planned_lift_off_time")->kind, MetricSpec::Kind::Time);
+  EXPECT_EQ(schema.task_names, (std::vector<std::string>{"x", "y", "z", "yaw", "roll", "pitch"}));
+  ASSERT_EQ(schema.markers.size(), 2u);
+  EXPECT_EQ(schema.markers[0].kind, MarkerSpec::Kind::Arc);
   // The robot never moved: the landing error is the whole target distance, and
   // the reward is the landing term times the penalty gate.
   EXPECT_NEAR(robot_.metrics["reward_error_xy"], 0.4, 1e-6);

@@ -6,6 +6,7 @@
 
 #include "abi/abi_boundary.h"
 #include "abi/factories.h"
+#include "abi/host_leg_geometry.h"
 #include "abi/jump_params.h"
 #include "abi/plugin_params.h"
 #include "control/hold_controller.h"
@@ -32,7 +33,9 @@ pronk_status create(const pronk_host_api* host, const pronk_param_value* params,
     *instance = nullptr;
     const std::vector<pronk_param_decl>& decls = controllerParamDecls();
     const ParamReader read(params, param_count, decls.data(), static_cast<int32_t>(decls.size()));
-    *instance = new JumpController(host, readJumpSettings(read));
+    JumpSettings settings = readJumpSettings(read);
+    settings.legs = legGeometryFromHost(host, nullptr);
+    *instance = new JumpController(host, settings);
   });
 }
 
@@ -73,6 +76,7 @@ const pronk_factory* guidedJumpControllerFactory() {
       create,
       &kOps,
       nullptr,
+      0, nullptr, nullptr, 0, 0, nullptr,  // 1.3 declarations: environments only
   };
   return &factory;
 }

@@ -239,6 +239,7 @@ class JumpEnvironment {
     js.action.assign(physical.begin(), physical.end());
     js.azimuth = azimuth;
     js.landing_height = target.z();
+    js.legs = legs_;
     controller_ = std::make_unique<JumpController>(host_, js);
   }
 
@@ -287,10 +288,10 @@ class JumpEnvironment {
     }
     if (record_.raw_action.size() == 0) record_.raw_action = Eigen::VectorXd::Zero(kActionSize);
     const jump::RewardBreakdown r = jump::computeReward(record_, settings_.reward);
-    for (const jump::RewardTerm* term : r.terms()) metric("penalty_" + term->name, term->cost());
+    for (const jump::RewardTerm* term : r.terms()) metric(term->name, term->cost());
     metric("running_cost", r.running_cost);
     metric("terminal_cost", r.terminal_cost);
-    metric("cost_gate", r.penalty_gate);  // exp(-C^2 / 5); not a "penalty_" term
+    metric("cost_gate", r.penalty_gate);  // exp(-C^2 / 5); not a cost term
     metric("landing_reward", r.landing_reward);
     metric("reward_error_xy", r.landing_error_xy);
     metric("reward_error_z", r.landing_error_z);
@@ -478,6 +479,108 @@ pronk_status priorAction(void* instance, const double* observation, double* acti
 
 void destroy(void* instance) { delete self(instance); }
 
+// ABI 1.3: every metric this environment reports, declared, so that the host's
+// table, results files and video take them from here (docs/results-format.md).
+struct MetricTable {
+  std::vector<std::string> names;  // owns the generated names (action_*, cost terms)
+  std::vector<pronk_metric_decl> decls;
+};
+
+const MetricTable& metricTable() {
+  static const MetricTable table = [] {
+    MetricTable t;
+    struct Plain {
+      const char* name;
+      uint32_t kind;
+      const char* unit;
+      const char* description;
+      const char* column;
+      const char* pairs_with;
+    };
+    const Plain plain[] = {
+        {"planned_lift_off_time", PRONK_METRIC_TIME, "s", "the plan's lift-off", "lift-off s", "lift_off"},
+        {"planned_apex_time", PRONK_METRIC_TIME, "s", "the plan's apex", "apex s", "apex_time"},
+        {"planned_touchdown_time", PRONK_METRIC_TIME, "s", "the plan's touchdown on the target's surface",
+         "touchdown s", "touchdown"},
+        {"predicted_landing_x", PRONK_METRIC_VALUE, "m", "the plan's CoM landing point, start frame", "pred. x m",
+         nullptr},
+        {"predicted_landing_y", PRONK_METRIC_VALUE, "m", "the plan's CoM landing point, start frame", "pred. y m",
+         nullptr},
+        {"predicted_landing_z", PRONK_METRIC_VALUE, "m", "the plan's landing height above the take-off surface",
+         nullptr, nullptr},
+        {"planned_lift_off_x", PRONK_METRIC_VALUE, "m", "the plan's lift-off CoM, start frame", nullptr, nullptr},
+        {"planned_lift_off_y", PRONK_METRIC_VALUE, "m", "the plan's lift-off CoM, start frame", nullptr, nullptr},
+        {"planned_lift_off_z", PRONK_METRIC_VALUE, "m", "the plan's lift-off CoM, start frame", nullptr, nullptr},
+        {"planned_lift_off_vx", PRONK_METRIC_VALUE, "m/s", "the plan's lift-off CoM velocity", nullptr, nullptr},
+        {"planned_lift_off_vy", PRONK_METRIC_VALUE, "m/s", "the plan's lift-off CoM velocity", nullptr, nullptr},
+        {"planned_lift_off_vz", PRONK_METRIC_VALUE, "m/s", "the plan's lift-off CoM velocity", nullptr, nullptr},
+        {"planned_flight_time", PRONK_METRIC_VALUE, "s", "the plan's flight from lift-off to the target's surface",
+         nullptr, nullptr},
+        {"planned_apex_height", PRONK_METRIC_VALUE, "m", "the plan's CoM apex above standing", nullptr, nullptr},
+        {"action_excess", PRONK_METRIC_VALUE, "1", "raw action beyond +-raw_limit, summed", nullptr, nullptr},
+        {"predicted_speed_shortfall", PRONK_METRIC_VALUE, "m/s",
+         "the safety filter's torque check: lift-off speed the motors are predicted to miss", nullptr, nullptr},
+        {"running_cost", PRONK_METRIC_VALUE, "1", "the reward's running (thrust) costs, summed", nullptr, nullptr},
+        {"terminal_cost", PRONK_METRIC_VALUE, "1", "the reward's lift-off and touchdown costs, summed", nullptr,
+         nullptr},
+        {"cost_gate", PRONK_METRIC_VALUE, "1", "exp(-C^2 / 5), the gate the costs put on the landing reward", nullptr,
+         nullptr},
+        {"landing_reward", PRONK_METRIC_VALUE, "1", "R_lt, the landing-target reward before the gate", nullptr,
+         nullptr},
+        {"reward_error_xy", PRONK_METRIC_VALUE, "m", "the reward's horizontal landing error", nullptr, nullptr},
+        {"reward_error_z", PRONK_METRIC_VALUE, "m", "the reward's vertical landing error", nullptr, nullptr},
+        {"lift_off_time", PRONK_METRIC_TIME, "s", "the controller's flight phase began", nullptr, nullptr},
+        {"apex_time", PRONK_METRIC_TIME, "s", "the CoM's vertical velocity turned negative", nullptr, nullptr},
+        {"touchdown_time", PRONK_METRIC_TIME, "s", "the controller's landing phase began", nullptr, nullptr},
+        {"touchdown_roll", PRONK_METRIC_VALUE, "rad", "trunk roll at touchdown (ZYX, start frame)", nullptr, nullptr},
+        {"touchdown_pitch", PRONK_METRIC_VALUE, "rad", "trunk pitch at touchdown (ZYX, start frame)", nullptr,
+         nullptr},
+        {"lift_off_velocity_error", PRONK_METRIC_VALUE, "m/s", "|CoM velocity at lift-off - the plan's|", nullptr,
+         nullptr},
+        {"lift_off_position_error", PRONK_METRIC_VALUE, "m", "|CoM at lift-off - the plan's|", nullptr, nullptr},
+        {"lift_off_body_rate_x", PRONK_METRIC_VALUE, "rad/s", "the whole body's I^-1 L at lift-off, start frame",
+         nullptr, nullptr},
+        {"lift_off_body_rate_y", PRONK_METRIC_VALUE, "rad/s", "the whole body's I^-1 L at lift-off, start frame",
+         nullptr, nullptr},
+        {"lift_off_body_rate_z", PRONK_METRIC_VALUE, "rad/s", "the whole body's I^-1 L at lift-off, start frame",
+         nullptr, nullptr},
+        {"rest_time", PRONK_METRIC_TIME, "s", "after touchdown, the CoM's speed stays below 0.05 m/s from here",
+         nullptr, nullptr},
+    };
+    // Generated names first, so that their storage does not move afterwards.
+    const jump::RewardBreakdown breakdown;
+    for (const jump::RewardTerm* term : breakdown.terms()) t.names.push_back(term->name);
+    for (int i = 0; i < kActionSize; ++i) {
+      t.names.push_back(std::string("action_") + jump::actionParameterName(static_cast<jump::ActionParameter>(i)));
+    }
+    for (const Plain& m : plain) {
+      t.decls.push_back({sizeof(pronk_metric_decl), m.name, m.kind, m.unit, m.description, m.column, m.pairs_with});
+    }
+    const size_t terms = breakdown.terms().size();
+    for (size_t k = 0; k < terms; ++k) {
+      t.decls.push_back({sizeof(pronk_metric_decl), t.names[k].c_str(), PRONK_METRIC_PENALTY, "1",
+                         "a cost term of the paper's reward (weight x value)", nullptr, nullptr});
+    }
+    for (int i = 0; i < kActionSize; ++i) {
+      const auto p = static_cast<jump::ActionParameter>(i);
+      t.decls.push_back({sizeof(pronk_metric_decl), t.names[terms + i].c_str(), PRONK_METRIC_VALUE,
+                         jump::actionParameterUnit(p), "the mapped action parameter", nullptr, nullptr});
+    }
+    return t;
+  }();
+  return table;
+}
+
+const char* const kTaskNames[kObservationSize] = {"x", "y", "z", "yaw", "roll", "pitch"};
+
+const pronk_marker_decl kMarkers[] = {
+    {sizeof(pronk_marker_decl), PRONK_MARKER_ARC, "planned flight",
+     {"planned_lift_off_x", "planned_lift_off_y", "planned_lift_off_z", "planned_lift_off_vx", "planned_lift_off_vy",
+      "planned_lift_off_vz", "planned_flight_time"}},
+    {sizeof(pronk_marker_decl), PRONK_MARKER_POINT, "predicted landing",
+     {"predicted_landing_x", "predicted_landing_y", "predicted_landing_z", nullptr, nullptr, nullptr, nullptr}},
+};
+
 const pronk_environment_ops kOps = {sizeof(pronk_environment_ops), reset, act, step, finish, destroy, priorAction};
 
 }  // namespace
@@ -498,6 +601,12 @@ const pronk_factory* jumpEnvironmentFactory() {
       create,
       nullptr,
       &kOps,
+      static_cast<int32_t>(metricTable().decls.size()),
+      metricTable().decls.data(),
+      kTaskNames,
+      kObservationSize,
+      static_cast<int32_t>(std::size(kMarkers)),
+      kMarkers,
   };
   return &factory;
 }

@@ -210,6 +210,10 @@ Eigen::Matrix3d JumpController::legJacobian(int foot, const Eigen::VectorXd& q) 
 }
 
 Eigen::Vector3d JumpController::legIk(int foot, const Eigen::Vector3d& target) {
+  if (settings_.legs && foot < jump::kLegCount) {
+    const jump::LegIkResult exact = jump::solveLegIk((*settings_.legs)[foot], target);
+    if (exact.ok() && exact.within_limits) return exact.q;
+  }
   Eigen::VectorXd q = q_ref_;
   for (int iteration = 0; iteration < 6; ++iteration) {
     double p[3];

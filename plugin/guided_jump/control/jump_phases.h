@@ -48,6 +48,7 @@
 
 #include "control/hold_controller.h"
 #include "method/explosive_phase.h"
+#include "method/leg_ik.h"
 #include "method/orientation_trajectory.h"
 #include "pronk/plugin_abi.h"
 
@@ -69,6 +70,9 @@ struct JumpSettings {
   // rad/s (1/s; 0: off, the paper's kinematic thrust). Needs a host with ABI 1.2.
   double momentum_gain = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
+  // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
+  // none: the IK takes Newton steps on the host's kinematics.
+  std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
 };
 
 enum class JumpPhase { kHold, kStand, kThrust, kExplosive, kFlight, kDescend, kLanding };
@@ -156,15 +160,15 @@ class JumpController {
   void jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref, const Eigen::VectorXd& qd_ref,
                     bool gravity, const Eigen::Vector3d& com_acceleration, const Eigen::Vector3d& moment,
                     double* torque);
-  // Newton steps on the host's leg kinematics from q_ref_'s current values: at
-  // most 6 damped steps of at most 0.2 rad each, stopping at a 1 um residual.
-  // Not jump::solveLegIk with the host's leg geometry, although it is exact: on
-  // the controller's inputs the two differ by up to 7e-6 rad where these steps
-  // converge and by up to 0.16 rad where they do not (a fast sideways or up
-  // thrust), and switching moved landings by more than 1 mm in 10 of the 25
-  // Go1/Aliengo scenario files (Aliengo down-jump 19 mm, Go1 lateral 1.5 mm;
-  // region sweeps up to 0.6 m on targets that fail either way, and one target
-  // more or fewer landing). A switch is a measured change of its own.
+  // The leg's joint angles for a foot position in the trunk frame: the planner's
+  // exact IK (jump::solveLegIk) on the analytic leg model when the settings have
+  // one and its answer lies within the joint limits; otherwise (no analytic
+  // model, out of reach or out of the limits) at most 6 damped Newton steps of
+  // at most 0.2 rad on the host's leg kinematics from q_ref_, stopping at a 1 um
+  // residual. The Newton steps alone used to be the controller's IK: they
+  // differ from the exact one by up to 7e-6 rad where they converge and by up to
+  // 0.16 rad where 6 steps are not enough (fast sideways or up thrusts), and
+  // cost a quarter of a jump's simulation (docs/method.md, "One leg IK").
   Eigen::Vector3d legIk(int foot, const Eigen::Vector3d& foot_base);
   Eigen::Matrix3d legJacobian(int foot, const Eigen::VectorXd& q);
   // Landing: joint PD plus the body wrench that stops the CoM where it touched
