@@ -2,6 +2,7 @@
 #include <cassert>
 #include <cmath>
 
+#include "mlp_layers.h"
 #include "policy_checks.h"
 #include "pronk/error.h"
 #include "pronk/policy.h"
@@ -14,23 +15,6 @@ constexpr Activation kActivations[] = {Activation::Tanh, Activation::Relu, Activ
 
 void throwIf(const std::optional<policy_file::Problem>& problem) {
   if (problem) throw Error("policy: " + problem->str());
-}
-
-// In place, element by element.
-void activate(Activation activation, Eigen::VectorXd& x) {
-  switch (activation) {
-    case Activation::Tanh:
-      x = x.array().tanh();
-      break;
-    case Activation::Relu:
-      x = x.cwiseMax(0.0);
-      break;
-    case Activation::Elu:  // alpha = 1; expm1 keeps precision near 0
-      for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = x[i] > 0 ? x[i] : std::expm1(x[i]);
-      break;
-    case Activation::Linear:
-      break;
-  }
 }
 
 }  // namespace
@@ -73,11 +57,7 @@ Eigen::VectorXd MlpPolicy::act(const Eigen::VectorXd& observation) const {
   }
   Eigen::VectorXd x = observation;
   if (normalization_) x = (x - normalization_->mean).cwiseQuotient(normalization_->std);
-  for (const MlpLayer& layer : layers_) {
-    x = layer.weights * x + layer.bias;
-    activate(layer.activation, x);
-  }
-  return x;
+  return mlp_layers::evaluate(layers_, std::move(x));
 }
 
 void MlpPolicy::setObservationNormalization(Eigen::VectorXd mean, Eigen::VectorXd std) {

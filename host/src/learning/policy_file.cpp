@@ -2,13 +2,9 @@
 // strict: every key is known, typed and shaped, and every problem is an
 // InputError at the line where the offending key is written.
 #include <algorithm>
-#include <cerrno>
 #include <climits>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "file_replace.h"
 #include "json_text.h"
 #include "policy_checks.h"
 #include "pronk/error.h"
@@ -292,11 +288,7 @@ nlohmann::ordered_json toJson(const Eigen::VectorXd& v) {
 MlpPolicy parsePolicy(const std::string& text, const std::string& name) { return PolicyReader(text, name).read(); }
 
 MlpPolicy loadPolicy(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, std::string("cannot read the policy file: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parsePolicy(text.str(), path);
+  return parsePolicy(learning_files::readFile(path, "policy file"), path);
 }
 
 std::string policyToJson(const MlpPolicy& policy) {
@@ -332,24 +324,7 @@ std::string policyToJson(const MlpPolicy& policy) {
 }
 
 void savePolicy(const MlpPolicy& policy, const std::string& path) {
-  const std::string text = policyToJson(policy);
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error("cannot write the policy file " + partial + ": " + std::strerror(errno));
-    out << text;
-    out.close();
-    if (!out) {
-      std::filesystem::remove(partial);
-      throw Error("cannot write the policy file " + partial + ": " + std::strerror(errno));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) {
-    std::filesystem::remove(partial);
-    throw Error("cannot replace the policy file " + path + ": " + ec.message());
-  }
+  learning_files::replaceFile(path, policyToJson(policy), "policy file");
 }
 
 }  // namespace pronk

@@ -1,0 +1,42 @@
+// replaceFile and readFile.
+#include "file_replace.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "pronk/error.h"
+
+namespace pronk::learning_files {
+
+void replaceFile(const std::string& path, const std::string& text, const std::string& what) {
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write the " + what + " " + partial + ": " + std::strerror(errno));
+    out << text;
+    out.close();
+    if (!out) {
+      std::filesystem::remove(partial);
+      throw Error("cannot write the " + what + " " + partial + ": " + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::filesystem::remove(partial);
+    throw Error("cannot replace the " + what + " " + path + ": " + ec.message());
+  }
+}
+
+std::string readFile(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0}, "cannot read the " + what + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace pronk::learning_files
