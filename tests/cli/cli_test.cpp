@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sys/wait.h>
 
 #include "pronk_command.h"
@@ -171,6 +172,20 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
             std::string::npos)
       << o.output;
+}
+
+TEST(Cli, BenchRolloutPrintsEachLeverAndTheSpeedUp) {
+  // A smoke run on a two-case sweep (the figures come from the region sweep,
+  // docs/performance.md): every row and the last line's exact form.
+  const Outcome o = pronk("bench --rollout --repeats 1 --jobs 2 --scenario " + cliScenario("go1_sweep.xml"));
+  EXPECT_EQ(o.status, 0) << o.output;
+  for (const char* row : {"one world per case, full episodes, traces", "+ the controller's exact leg IK",
+                          "+ worlds reused", "+ episodes end at rest", "+ no trace (the engine, 1 thread)",
+                          "the engine, 2 threads"}) {
+    EXPECT_NE(o.output.find(row), std::string::npos) << row << "\n" << o.output;
+  }
+  const std::regex last(R"re(rollout speed-up: [0-9]+\.[0-9]{2}x \(2 threads\) over one world per case with full episodes and traces\n$)re");
+  EXPECT_TRUE(std::regex_search(o.output, last)) << o.output;
 }
 
 }  // namespace

@@ -239,7 +239,7 @@ class JumpEnvironment {
     js.action.assign(physical.begin(), physical.end());
     js.azimuth = azimuth;
     js.landing_height = target.z();
-    js.legs = legs_;
+    if (js.exact_leg_ik) js.legs = legs_;
     controller_ = std::make_unique<JumpController>(host_, js);
   }
 

@@ -38,6 +38,10 @@ const pronk_param_decl kMomentumGain = {
     kDeclSize, "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
     "thrust: the trunk turns against the touchdown attitude error the whole-body angular momentum predicts, at this "
     "rate per rad/s (0: off, the paper's)"};
+const pronk_param_decl kLegIk = {
+    kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
+    "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
+    "none) or newton (6 damped Newton steps on the host's kinematics, the old path; a quarter of a jump's time)"};
 // Both factories too, but each with its own default (see the lists below).
 pronk_param_decl feedforwardDecl(const char* default_value) {
   return {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, default_value, "", kFeedforwardDoc};
@@ -70,6 +74,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back({kDeclSize, "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
                  "the landing surface's height above the take-off surface (when the legs extend)"});
     d.push_back(kMomentumGain);
+    d.push_back(kLegIk);
     return d;
   }();
   return decls;
@@ -88,6 +93,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         feedforwardDecl("dynamic"),
         kFlightKpDivision,
         kMomentumGain,
+        kLegIk,
         {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
          "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
@@ -131,6 +137,11 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->feedforward = feedforwardFromName(read.string("feedforward"));
   s->flight_kp_division = read.real("flight_kp_division");
   s->momentum_gain = read.real("momentum_gain");
+  const std::string ik = read.string("leg_ik");
+  if (ik != "exact" && ik != "newton") {
+    throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");
+  }
+  s->exact_leg_ik = ik == "exact";
 }
 
 jump::MotorModel motorModelFromName(const std::string& name) {

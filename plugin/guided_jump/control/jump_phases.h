@@ -71,7 +71,9 @@ struct JumpSettings {
   double momentum_gain = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
-  // none: the IK takes Newton steps on the host's kinematics.
+  // none: the IK takes Newton steps on the host's kinematics. Set by the
+  // factories when exact_leg_ik (parameter leg_ik).
+  bool exact_leg_ik = true;
   std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
 };
 
