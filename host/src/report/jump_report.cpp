@@ -145,8 +145,13 @@ void printJumpSummary(std::FILE* out, const JumpStatistics& s, double wall_clock
                  "landing error: median %.1f cm, 90th percentile %.1f cm, max %.1f cm; yaw error median %.1f deg\n",
                  100 * median(s.errors), 100 * percentile(s.errors, 0.9), 100 * percentile(s.errors, 1.0),
                  median(s.yaw_errors_deg));
-    std::fprintf(out, "ended standing: %d of %zu; at rest (feet down, CoM < %.2f m/s, trunk < %.1f rad/s) from: median %.2f s\n",
-                 s.standing, landed, kRestSpeed, kRestRate, median(s.rest_times));
+    std::fprintf(out, "ended standing: %d of %zu; ", s.standing, landed);
+    if (s.rest_times.empty()) {
+      std::fprintf(out, "none came to rest (feet down, CoM < %.2f m/s, trunk < %.1f rad/s)\n", kRestSpeed, kRestRate);
+    } else {
+      std::fprintf(out, "%zu at rest (feet down, CoM < %.2f m/s, trunk < %.1f rad/s) from a median %.2f s\n",
+                   s.rest_times.size(), kRestSpeed, kRestRate, median(s.rest_times));
+    }
   }
   if (s.ran > 0 && s.wall_s > 0) {
     std::fprintf(out, "simulated %.1f s in %.1f s of episode wall time (%.1fx real time per episode)", s.simulated_s,
