@@ -73,7 +73,8 @@ Measurement measure(const Scenario& scenario, const SimSpec& sim, const std::str
 std::string describe(const SimSpec& sim) {
   char buffer[128];
   if (sim.integrator == "semi_explicit_euler" || sim.integrator == "explicit_euler") {
-    std::snprintf(buffer, sizeof buffer, "%s h %.0e", sim.integrator.c_str(), sim.step);
+    std::snprintf(buffer, sizeof buffer, "%s h %.0e%s", sim.integrator.c_str(), sim.step,
+                  sim.contact.implicit ? " implicit" : "");
   } else {
     std::snprintf(buffer, sizeof buffer, "%s acc %.0e", sim.integrator.c_str(), sim.accuracy);
   }
@@ -180,6 +181,13 @@ int benchCommand(const CommonOptions& common, const BenchOptions& options) {
       SimSpec s = defaults;
       s.integrator = "semi_explicit_euler";
       s.step = h;
+      sweep.push_back(s);
+    }
+    for (double h : {2e-4, 5e-4, 1e-3}) {
+      SimSpec s = defaults;
+      s.integrator = "semi_explicit_euler";
+      s.step = h;
+      s.contact.implicit = true;
       sweep.push_back(s);
     }
     for (double acc : {1e-2, 3e-3, 1e-3, 1e-4}) {

@@ -43,6 +43,11 @@ class FootContactForce : public SimTK::Force::Custom::Implementation {
   std::vector<FootContactState> evaluate(const SimTK::State& state) const;
   // Forget every anchor (as after a teleport of the robot): call on a state before stepping.
   void clearAnchors(SimTK::State& state) const;
+  // Implicit contact (ContactSpec::implicit) over fixed steps of `step` s: each
+  // foot's springs and dampers act as on an isolated point of the foot's
+  // apparent mass (tangential, normal; kg), solved for the step's end velocity.
+  // step 0: explicit, as without the option.
+  void setImplicitStep(double step, std::vector<double> tangential_mass, std::vector<double> normal_mass);
 
   void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                  SimTK::Vector_<SimTK::Vec3>& particle_forces, SimTK::Vector& mobility_forces) const override;
@@ -60,6 +65,8 @@ class FootContactForce : public SimTK::Force::Custom::Implementation {
   std::vector<FootSphere> feet_;
   const Terrain& terrain_;
   ContactSpec params_;
+  double implicit_step_ = 0;
+  std::vector<double> tangential_mass_, normal_mass_;
   mutable SimTK::DiscreteVariableIndex anchors_index_;
 };
 

@@ -92,6 +92,10 @@ struct ContactSpec {
   double mu_dynamic = 0.8;
   double tangential_stiffness = 2e4;    // N/m, bristle spring
   double tangential_damping = 252;      // N s/m, bristle damper
+  // Fixed-step integrators only: the contact's springs and dampers are taken
+  // implicitly over one step (each foot as its apparent mass, docs/physics.md),
+  // so that steps near the control period stay stable.
+  bool implicit = false;
   SourceLocation where;                 // the <contact> element (file only if absent)
 };
 

@@ -123,6 +123,9 @@ class World {
   Eigen::Vector3d footPositionBase(int foot, const Eigen::VectorXd& q) const;
   // d(foot position in trunk frame)/d(q of that leg's joints), 3 x leg size.
   Eigen::MatrixXd legJacobianBase(int foot, const Eigen::VectorXd& q) const;
+  // With an implicit contact: each foot's apparent mass (tangential, normal; kg)
+  // in the initial stance, which the contact uses (empty otherwise).
+  const std::pair<std::vector<double>, std::vector<double>>& footApparentMasses() const;
   // World poses of every description body (for traces and rendering).
   std::vector<Eigen::Isometry3d> bodyPoses() const;
   // The same for a given base pose and joint positions (any state), and the
@@ -136,6 +139,7 @@ class World {
   RobotState state_;
   std::optional<Failure> failure_;
   StepStatistics stats_;
+  std::pair<std::vector<double>, std::vector<double>> foot_masses_;
   void readState();
   std::vector<Eigen::Isometry3d> posesIn(const SimTK::State& state) const;
 };

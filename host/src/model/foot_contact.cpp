@@ -18,6 +18,13 @@ void FootContactForce::realizeTopology(SimTK::State& state) const {
       SimTK::Stage::Velocity);
 }
 
+void FootContactForce::setImplicitStep(double step, std::vector<double> tangential_mass,
+                                       std::vector<double> normal_mass) {
+  implicit_step_ = step;
+  tangential_mass_ = std::move(tangential_mass);
+  normal_mass_ = std::move(normal_mass);
+}
+
 void FootContactForce::clearAnchors(SimTK::State& state) const {
   auto& v = SimTK::Value<SimTK::Vector>::updDowncast(
       state.updDiscreteVariable(forces_.getMySubsystemIndex(), anchors_index_));
@@ -43,7 +50,17 @@ void FootContactForce::compute(const SimTK::State& state, const SimTK::Vector& a
     const SVec3 contact_body = ~X_GB * contact_world;
     const SVec3 contact_velocity = body.findStationVelocityInGround(state, contact_body);
     const double depth_rate = -contact_velocity[2];
-    const double fn = params_.stiffness * depth * (1 + params_.dissipation * depth_rate);
+    const double h = implicit_step_;
+    double fn = params_.stiffness * depth * (1 + params_.dissipation * depth_rate);
+    if (h > 0) {
+      // Spring k and damper b taken at the step's end (implicit Euler) on a point
+      // of the foot's apparent mass m: the velocity term becomes (b + h k) v with
+      // v the step's end velocity, v_end ~ v m / (m + h (b + h k)) when the
+      // other forces balance the spring's (a loaded foot at rest stays put).
+      const double k = params_.stiffness, b = params_.stiffness * params_.dissipation * depth;
+      const double damping = b + h * k;
+      fn = k * depth + damping * depth_rate / (1 + h * damping / normal_mass_[i]);
+    }
     if (fn <= 0) continue;
 
     const double mu_s = surface->mu ? *surface->mu : params_.mu_static;
@@ -65,6 +82,12 @@ void FootContactForce::compute(const SimTK::State& state, const SimTK::Vector& a
     }
     double fx = -params_.tangential_stiffness * sx - params_.tangential_damping * vx;
     double fy = -params_.tangential_stiffness * sy - params_.tangential_damping * vy;
+    if (h > 0) {
+      const double k = params_.tangential_stiffness, damping = params_.tangential_damping + h * k;
+      const double scale = 1.0 / (1 + h * damping / tangential_mass_[i]);
+      fx = -k * sx - damping * vx * scale;
+      fy = -k * sy - damping * vy * scale;
+    }
     const double trial = std::hypot(fx, fy);
     const double limit = (was_sliding ? mu_k : mu_s) * fn;
     bool sliding = false;

@@ -19,6 +19,7 @@ ContactSpec readContact(const XMLElement& e, const SourceFile& file) {
   c.mu_dynamic = r.number("mu_dynamic", c.mu_dynamic, Range::nonNegative());
   c.tangential_stiffness = r.number("tangential_stiffness", c.tangential_stiffness, Range::positive());
   c.tangential_damping = r.number("tangential_damping", c.tangential_damping, Range::nonNegative());
+  c.implicit = r.boolean("implicit", c.implicit);
   r.rejectUnknownAttributes();
   r.children({});
   if (c.mu_dynamic > c.mu_static) {

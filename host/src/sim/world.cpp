@@ -102,7 +102,7 @@ struct World::Impl {
   SimTK::GeneralForceSubsystem forces{system};
   std::unique_ptr<SimTK::Force::Gravity> gravity;
   std::unique_ptr<SimTK::Force::DiscreteForces> torques;
-  const FootContactForce* contact = nullptr;
+  FootContactForce* contact = nullptr;
   RobotMultibody mb;
   std::unique_ptr<SimTK::Integrator> integ;
   bool adaptive = false;  // error-controlled integrator
@@ -274,6 +274,36 @@ World::World(const RobotDescription& robot, const PlatformSpec& platform, const 
   w.scratch = w.system.getDefaultState();
   w.scratch_q.resize(0);
   reset();
+  if (sim.contact.implicit) {
+    if (w.adaptive) {
+      throw InputError(sim.contact.where, "<contact implicit=\"true\"> needs a fixed-step integrator "
+                                          "(semi_explicit_euler or explicit_euler), not " + sim.integrator);
+    }
+    // Each foot's apparent mass, (J M^-1 J^T)^-1 along the ground and the
+    // normal, in the initial stance: the mass the contact's springs and
+    // dampers push against.
+    const SimTK::State& s0 = w.integ->getState();
+    std::vector<double> tangential, normal;
+    for (const FootSphere& foot : w.feet) {
+      SimTK::Matrix J;
+      w.matter.calcStationJacobian(s0, foot.body, foot.center_body, J);
+      SimTK::Matrix inverse_mass(3, 3);
+      for (int r = 0; r < 3; ++r) {
+        SimTK::Vector column(J.ncol()), Minv_column;
+        for (int u = 0; u < J.ncol(); ++u) column[u] = J(r, u);
+        w.matter.multiplyByMInv(s0, column, Minv_column);
+        for (int c = 0; c < 3; ++c) {
+          double dot = 0;
+          for (int u = 0; u < J.ncol(); ++u) dot += J(c, u) * Minv_column[u];
+          inverse_mass(c, r) = dot;
+        }
+      }
+      tangential.push_back(2.0 / (inverse_mass(0, 0) + inverse_mass(1, 1)));
+      normal.push_back(1.0 / inverse_mass(2, 2));
+    }
+    w.contact->setImplicitStep(sim.step, tangential, normal);
+    foot_masses_ = {tangential, normal};
+  }
 }
 
 World::~World() = default;
@@ -315,6 +345,8 @@ void World::reset() {
   resetTo(Eigen::Vector3d(p.base_position[0], p.base_position[1], p.base_position[2]), p.base_yaw,
           initialJointPositions(), p.on_ground);
 }
+
+const std::pair<std::vector<double>, std::vector<double>>& World::footApparentMasses() const { return foot_masses_; }
 
 void World::restart(const Vec3& base_position, double base_yaw, Terrain terrain) {
   impl_->platform.base_position = base_position;
