@@ -3,6 +3,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -21,6 +23,32 @@ enum ExitCode : int {
 struct CommonOptions {
   std::vector<std::string> plugin_paths;  // --plugin, repeatable
 };
+
+// Flag checks. CLI11's own Range lets NaN through (every comparison with it is
+// false) and an empty string is no value: these refuse both, naming the flag.
+inline CLI::Validator finiteIn(double lo, double hi, bool lo_open = false) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        try {
+          size_t used = 0;
+          v = std::stod(text, &used);
+          if (used != text.size()) return "'" + text + "' is not a number";
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (!std::isfinite(v)) return "'" + text + "' is not a finite number";
+        if (v > hi || v < lo || (lo_open && v == lo)) {
+          char range[96];
+          std::snprintf(range, sizeof range, "%s%g, %g]", lo_open ? "(" : "[", lo, hi);
+          return text + " is not in " + range;
+        }
+        return std::string();
+      },
+      "NUMBER");
+}
+inline const CLI::Validator kNonEmpty(
+    [](std::string& text) { return text.empty() ? std::string("an empty value") : std::string(); }, "TEXT");
 
 // A declared subcommand and what runs it once the command line is parsed.
 struct Subcommand {

@@ -65,16 +65,16 @@ Subcommand declareRender(CLI::App& app, const CommonOptions& common) {
   CLI::App* sub = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "
                                                   "simulating it");
   sub->add_option("scenario", o->scenario, "scenario file")->required()->check(CLI::ExistingFile);
-  sub->add_option("-o,--output", o->video, "MP4 file to write")->required();
+  sub->add_option("-o,--output", o->video, "MP4 file to write")->required()->check(kNonEmpty);
   sub->add_option("--trace", o->trace, "trace.csv of an earlier `pronk run --out` (no simulation)")
       ->check(CLI::ExistingFile);
-  sub->add_option("--controller", o->controller, "controller to use instead of the scenario's");
-  sub->add_option("--duration", o->duration, "episode length in s")->check(CLI::PositiveNumber);
-  sub->add_option("--speed", o->speed, "playback speed, e.g. 0.25")->check(CLI::PositiveNumber);
-  sub->add_option("--fps", o->fps, "frames per second")->check(CLI::Range(1.0, 240.0));
-  sub->add_option("--size", o->size, "WIDTHxHEIGHT, both even");
+  sub->add_option("--controller", o->controller, "controller to use instead of the scenario's")->check(kNonEmpty);
+  sub->add_option("--duration", o->duration, "episode length in s")->check(finiteIn(0, kMaxEpisodeSeconds, true));
+  sub->add_option("--speed", o->speed, "playback speed, e.g. 0.25")->check(finiteIn(0, 1e3, true));
+  sub->add_option("--fps", o->fps, "frames per second")->check(finiteIn(1.0, 240.0));
+  sub->add_option("--size", o->size, "WIDTHxHEIGHT, both even")->check(kNonEmpty);
   sub->add_option("--still", o->stills, "also save the frame at this simulated time as a PNG (repeatable)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0, kMaxEpisodeSeconds));
   sub->add_option("--camera", o->camera, "camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
 
   return {sub, [&common, o] { return renderCommand(common, *o); }};

@@ -135,25 +135,25 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand("run", "simulate a scenario and print what happened");
   sub->add_option("scenario", o->scenario, "scenario file")->required()->check(CLI::ExistingFile);
-  sub->add_option("--out", o->out_dir, "directory for results.json and the trace CSV");
-  sub->add_option("--controller", o->controller, "controller to use instead of the scenario's (e.g. stand)");
+  sub->add_option("--out", o->out_dir, "directory for results.json and the trace CSV")->check(kNonEmpty);
+  sub->add_option("--controller", o->controller, "controller to use instead of the scenario's (e.g. stand)")->check(kNonEmpty);
   sub->add_option("--duration", o->duration,
                       "episode length in s (default: the scenario's <sim duration>, or in a jump run its "
                       "<environment>'s duration parameter)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--video", o->video, "write an H.264 MP4 of the episode (off-screen, OSMesa)");
+      ->check(finiteIn(0, kMaxEpisodeSeconds, true));
+  sub->add_option("--video", o->video, "write an H.264 MP4 of the episode (off-screen, OSMesa)")->check(kNonEmpty);
   sub->add_option("--speed", o->speed, "video playback speed, e.g. 0.25 for slow motion")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--fps", o->fps, "video frames per second")->check(CLI::Range(1.0, 240.0));
-  sub->add_option("--size", o->size, "video size WIDTHxHEIGHT, both even (default 1280x720)");
+      ->check(finiteIn(0, 1e3, true));
+  sub->add_option("--fps", o->fps, "video frames per second")->check(finiteIn(1.0, 240.0));
+  sub->add_option("--size", o->size, "video size WIDTHxHEIGHT, both even (default 1280x720)")->check(kNonEmpty);
   sub->add_option("--still", o->stills, "also save the video frame at this simulated time (s) as a PNG "
                                              "(repeatable)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0, kMaxEpisodeSeconds));
   sub->add_option("--camera", o->camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
   sub->add_option("--policy", o->policy,
                       "jump to the scenario's targets with this policy: 'ballistic' (the environment's analytic "
-                      "planner) or a policy file (default: the scenario's <environment policy>)");
-  sub->add_option("--sweep", o->sweep, "run the cases of this <sweeps> entry instead of the targets");
+                      "planner) or a policy file (default: the scenario's <environment policy>)")->check(kNonEmpty);
+  sub->add_option("--sweep", o->sweep, "run the cases of this <sweeps> entry instead of the targets")->check(kNonEmpty);
   sub->add_flag("--video-per-jump", o->video_per_jump, "one video file per jump (NAME-000.mp4 ...) instead of one");
   sub->add_option("--param", o->params,
                       "NAME=VALUE: set a parameter of the scenario's <environment> in a jump run, of its controller "

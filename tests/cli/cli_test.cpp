@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include "pronk_command.h"
@@ -186,6 +187,65 @@ TEST(Cli, BenchRolloutPrintsEachLeverAndTheSpeedUp) {
   }
   const std::regex last(R"re(rollout speed-up: [0-9]+\.[0-9]{2}x \(2 threads\) over one world per case with full episodes and traces\n$)re");
   EXPECT_TRUE(std::regex_search(o.output, last)) << o.output;
+}
+
+TEST(Cli, PipesDevicesAndEmptyDocumentsAreRefusedNotWaitedOn) {
+  // A FIFO given as a scenario or a policy would block a reader forever, and
+  // /dev/zero would fill the memory: both are refused by name, at once.
+  const std::string fifo = std::string(PRONK_CLI_OUT_DIR) + "/fifo.xml";
+  std::filesystem::create_directories(PRONK_CLI_OUT_DIR);
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const Outcome scenario = pronk("validate " + fifo);
+  EXPECT_EQ(scenario.status, 3) << scenario.output;
+  EXPECT_NE(scenario.output.find("not a regular file"), std::string::npos) << scenario.output;
+  for (const std::string& policy : {fifo, std::string("/dev/zero")}) {
+    const Outcome o = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + policy);
+    EXPECT_EQ(o.status, 3) << o.output;
+    EXPECT_NE(o.output.find(policy + ": the policy file is not a regular file"), std::string::npos) << o.output;
+  }
+  std::filesystem::remove(fifo);
+  // Only the XML declaration: no root element, with the file and line.
+  const std::string declaration = std::string(PRONK_CLI_OUT_DIR) + "/declaration_only.xml";
+  std::ofstream(declaration) << "<?xml version=\"1.0\"?>\n";
+  const Outcome empty = pronk("validate " + declaration);
+  EXPECT_EQ(empty.status, 3) << empty.output;
+  EXPECT_NE(empty.output.find(declaration + ":1: no root element"), std::string::npos) << empty.output;
+}
+
+TEST(Cli, NanEmptyAndHugeFlagValuesAreUsageErrors) {
+  // CLI11's ranges let NaN through and an empty value read as "unset": each is
+  // now refused against its flag (exit 2), never a silent default.
+  const std::string run = "run " + source("scenarios/go1/forward.xml") + " --policy ballistic ";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--fps nan --video x.mp4", "--fps: 'nan' is not a finite number"},
+      {"--duration nan", "--duration: 'nan' is not a finite number"},
+      {"--duration 1e308", "--duration: 1e308 is not in (0, 3600]"},
+      {"--still nan --video x.mp4", "--still: 'nan' is not a finite number"},
+      {"--speed inf --video x.mp4", "--speed: 'inf' is not a finite number"},
+      {"--size ''", "--size: an empty value"},
+      {"--out ''", "--out: an empty value"},
+      {"--video ''", "--video: an empty value"},
+      {"--sweep ''", "--sweep: an empty value"},
+  };
+  for (const auto& [flags, message] : cases) {
+    const Outcome o = pronk(run + flags);
+    EXPECT_EQ(o.status, 2) << flags << "\n" << o.output;
+    EXPECT_NE(o.output.find(message), std::string::npos) << flags << "\n" << o.output;
+  }
+}
+
+TEST(Cli, AModelTooStiffToSimulateFailsOnItsStepBudget) {
+  // dissipation 1e9 once took about 5 minutes for a 1.5 s hop; the step budget
+  // ends it within its first control period, as a failure with its reason.
+  const std::string file = std::string(PRONK_CLI_OUT_DIR) + "/stiff_contact.xml";
+  std::ofstream(file) << "<scenario version=\"1\" name=\"stiff\" angle=\"rad\">\n"
+                      << "  <include file=\"" << source("scenarios/platforms/go1.xml") << "\"/>\n"
+                      << "  <controller name=\"scripted_jump\"/>\n"
+                      << "  <sim duration=\"1.5\"><contact dissipation=\"1e9\"/></sim>\n</scenario>\n";
+  const Outcome o = pronk("run " + file);
+  EXPECT_EQ(o.status, 4) << o.output;
+  EXPECT_NE(o.output.find("step_budget: the integrator needed more than 500 steps"), std::string::npos) << o.output;
 }
 
 }  // namespace

@@ -158,7 +158,7 @@ TEST(PolicyFile, MissingFileIsAnInputError) {
     pronk::loadPolicy(path);
     FAIL() << "loaded a file that does not exist";
   } catch (const pronk::InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(path + ": cannot read the policy file", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": policy file not found", 0), 0u) << e.what();
   }
 }
 

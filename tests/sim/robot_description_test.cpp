@@ -98,7 +98,7 @@ TEST(RobotDescription, ErrorsNameTheFileAndLine) {
     loadUrdf("/nonexistent/robot.urdf");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/robot.urdf: cannot open"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/robot.urdf: URDF file not found"), std::string::npos) << e.what();
   }
   expectError("syntax.urdf", "<robot name='r'>\n<link name='a'>\n</robot>\n", ":2: ", "XML error");
   expectError("planar.urdf",

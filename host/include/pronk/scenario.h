@@ -99,13 +99,19 @@ struct ContactSpec {
   SourceLocation where;                 // the <contact> element (file only if absent)
 };
 
+// The longest episode any setting may ask for: one hour simulated.
+inline constexpr double kMaxEpisodeSeconds = 3600;
+
 struct SimSpec {
   double control_rate = 1000;                // Hz
   std::string integrator = "semi_explicit_euler2";  // or semi_explicit_euler, runge_kutta_merson ...
   double step = 2e-4;                        // s, fixed-step integrators
   double accuracy = 1e-3;                    // error-controlled integrators
   double flight_max_step = 5e-4;             // s, longest error-controlled step while no foot touches
-  double duration = 1.5;                     // s per episode
+  double duration = 1.5;                     // s per episode, at most kMaxEpisodeSeconds
+  // An episode whose integrator needs more steps than this per simulated
+  // second fails as `step_budget` (a model too stiff to simulate), not a hang.
+  double max_steps_per_second = 5e5;
   Vec3 gravity{0, 0, -9.81};
   ContactSpec contact;
   SourceLocation where;

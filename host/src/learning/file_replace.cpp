@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "pronk/error.h"
+#include "pronk/input_file.h"
 
 namespace pronk::learning_files {
 
@@ -31,12 +32,6 @@ void replaceFile(const std::string& path, const std::string& text, const std::st
   }
 }
 
-std::string readFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, "cannot read the " + what + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string readFile(const std::string& path, const std::string& what) { return readInputFile(path, what); }
 
 }  // namespace pronk::learning_files

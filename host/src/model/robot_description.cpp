@@ -2,6 +2,7 @@
 // shapes, resolve mesh URIs. Line numbers come from a tinyxml2 pass over the
 // same text, because urdfdom reports none.
 #include "pronk/robot_description.h"
+#include "pronk/input_file.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -449,13 +450,10 @@ RobotDescription parseUrdf(const std::string& xml, const std::string& origin, co
 }
 
 RobotDescription loadUrdf(const std::string& path, const UrdfOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw InputError({path, 0}, "cannot open the URDF file");
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = readInputFile(path, "URDF file");
   std::error_code ec;
   const std::string absolute = fs::absolute(path, ec).lexically_normal().string();
-  return parseUrdf(text.str(), ec ? path : absolute, options);
+  return parseUrdf(text, ec ? path : absolute, options);
 }
 
 }  // namespace pronk

@@ -12,6 +12,7 @@
 #include "element_reader.h"
 #include "pronk/scenario.h"
 #include "sections.h"
+#include "pronk/input_file.h"
 #include "urdf_root_mass.h"
 
 namespace pronk {
@@ -108,12 +109,24 @@ const XMLElement& Loader::open(const fs::path& shown, SourceFile& file, const So
   file.shown = shown.string();
   file.directory = fs::absolute(shown).lexically_normal().parent_path();
   auto doc = std::make_unique<tinyxml2::XMLDocument>();
+  std::error_code ec;
+  if (!fs::exists(shown, ec)) throw InputError(missing_at, "cannot open " + file.shown + ": no such file");
+  try {
+    checkInputFile(file.shown, "scenario file", 64ull << 20);
+  } catch (const InputError& e) {
+    throw InputError(missing_at, e.what());
+  }
   if (doc->LoadFile(file.shown.c_str()) == tinyxml2::XML_ERROR_FILE_NOT_FOUND ||
       doc->ErrorID() == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED) {
     throw InputError(missing_at, "cannot open " + file.shown);
   }
   if (doc->Error()) throw InputError(SourceLocation{file.shown, doc->ErrorLineNum()}, describeXmlError(*doc));
   const XMLElement* root = doc->RootElement();
+  if (!root) {
+    // Only a comment or the XML declaration: tinyxml2 parses it, but there is nothing to read.
+    throw InputError(SourceLocation{file.shown, 1},
+                     "no root element: a scenario file holds one <scenario>, an included one one <scenario_part>");
+  }
   if (const XMLElement* second = root->NextSiblingElement()) {
     scenario_file::failAt(*second, file, "a second root element; a file holds one <scenario> or <scenario_part>");
   }
@@ -273,7 +286,7 @@ Scenario Loader::load(const std::string& path) {
   files_.push_back(std::make_unique<SourceFile>());
   SourceFile& top = *files_.back();
   const fs::path shown = fs::path(path).lexically_normal();
-  if (!fs::is_regular_file(shown)) throw InputError(SourceLocation{shown.string(), 0}, "scenario file not found");
+  checkInputFile(shown.string(), "scenario file", 64ull << 20);  // not found, a pipe, a device, too big
   const XMLElement& root = open(shown, top, SourceLocation{shown.string(), 0});
   include_chain_.push_back(fs::weakly_canonical(shown));
   include_chain_shown_.push_back(top.shown);
@@ -305,6 +318,8 @@ Scenario loadScenario(const std::string& path) { return Loader().load(path); }
 Scenario loadScenarioPart(const std::string& path) { return Loader(true).load(path); }
 
 bool isScenarioPart(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return false;  // loadScenario says why (a pipe would block here)
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(path.c_str()) != tinyxml2::XML_SUCCESS || !doc.RootElement()) return false;
   return std::string(doc.RootElement()->Name()) == kPartRoot;

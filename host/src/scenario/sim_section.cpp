@@ -40,7 +40,8 @@ SimSpec readSim(const XMLElement& e, const SourceFile& file) {
   s.step = r.number("step", s.step, Range::positive());
   s.accuracy = r.number("accuracy", s.accuracy, Range::open(0, 1));
   s.flight_max_step = r.number("flight_max_step", s.flight_max_step, Range::positive());
-  s.duration = r.number("duration", s.duration, Range::positive());
+  s.duration = r.number("duration", s.duration, Range{0, kMaxEpisodeSeconds, true, false});
+  s.max_steps_per_second = r.number("max_steps_per_second", s.max_steps_per_second, Range::atLeast(1e3));
   s.gravity = r.vec3("gravity", s.gravity);
   r.rejectUnknownAttributes();
   const double period = 1 / s.control_rate;

@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <vector>
@@ -10,6 +11,8 @@
 namespace pronk::scenario_file {
 
 std::optional<RootBody> urdfRootBody(const std::string& urdf_path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(urdf_path, ec)) return std::nullopt;  // the URDF reader says why
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(urdf_path.c_str()) != tinyxml2::XML_SUCCESS) return std::nullopt;
   const tinyxml2::XMLElement* robot = doc.RootElement();

@@ -32,6 +32,10 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
   trace.joint_names = world.jointNames();
   trace.foot_links = world.footLinks();
   const auto start = std::chrono::steady_clock::now();
+  if (!(options.duration > 0 && options.duration <= kMaxEpisodeSeconds)) {
+    throw Error("episode duration " + std::to_string(options.duration) + " s is not in (0, " +
+                std::to_string(kMaxEpisodeSeconds) + "] s");
+  }
   const long ticks = std::lround(options.duration / world.controlPeriod());
   bool was_airborne = false;
   bool landed = false;      // a touchdown after a flight

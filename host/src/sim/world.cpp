@@ -381,6 +381,9 @@ void World::resetTo(const Eigen::Vector3d& base_position, double base_yaw, const
   w.contact->clearAnchors(state);
   w.torques->clearAllForces(state);
   w.integ = makeIntegrator(w.system, w.sim);
+  // stepTo returns after this many steps, so that the step budget is checked
+  // within a control period too.
+  w.integ->setInternalStepLimit(std::max(1, static_cast<int>(std::ceil(w.sim.max_steps_per_second / w.sim.control_rate))));
   w.adaptive = w.sim.integrator != "semi_explicit_euler" && w.sim.integrator != "explicit_euler";
   w.integ->initialize(state);
   failure_.reset();
@@ -426,7 +429,18 @@ bool World::step(const Eigen::VectorXd& torque) {
     if (w.adaptive) w.integ->setMaximumStepSize(airborne ? std::min(period, w.sim.flight_max_step) : period);
     w.integ->reinitialize(SimTK::Stage::Dynamics, false);
     const long steps_before = w.integ->getNumStepsTaken();
+    const long budget = static_cast<long>(std::ceil(w.sim.max_steps_per_second * period));
     while (w.integ->getTime() < t_next - 1e-12) {
+      if (w.integ->getNumStepsTaken() - steps_before >= budget) {
+        stats_.integrator_steps += w.integ->getNumStepsTaken() - steps_before;
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "the integrator needed more than %ld steps for one %g s control period (max_steps_per_second "
+                      "%g): the model is too stiff to simulate",
+                      budget, period, w.sim.max_steps_per_second);
+        failure_ = Failure{w.integ->getTime(), "step_budget", text};
+        return false;
+      }
       const auto status = w.integ->stepTo(t_next);
       if (status == SimTK::Integrator::EndOfSimulation || w.integ->isSimulationOver()) {
         failure_ = Failure{w.integ->getTime(), "diverged",
