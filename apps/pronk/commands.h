@@ -67,7 +67,8 @@ struct RunOptions {
   std::string out_dir;        // "" = no files
   std::string controller;     // overrides the scenario's controller when set
   double duration = 0;        // 0 = the scenario's
-  std::string video;          // "" = no video (unless the scenario's <render> names an output)
+  std::string video;          // the video file; "" = none, unless video_requested
+  bool video_requested = false;  // --video given, with or without a file name
   double speed = 0;           // playback speed; 0 = the scenario's (default 1)
   double fps = 0;             // 0 = the scenario's (default 30)
   std::string size;           // "WxH"; "" = the scenario's (default 1280x720)

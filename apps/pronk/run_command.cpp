@@ -141,7 +141,11 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
                       "episode length in s (default: the scenario's <sim duration>, or in a jump run its "
                       "<environment>'s duration parameter)")
       ->check(finiteIn(0, kMaxEpisodeSeconds, true));
-  sub->add_option("--video", o->video, "write an H.264 MP4 of the episode (off-screen, OSMesa)")->check(kNonEmpty);
+  sub->add_option("--video", o->video,
+                  "write an H.264 MP4 of the episode (off-screen, OSMesa) to FILE; without FILE, under --out with the "
+                  "name the scenario's <render output> suggests")
+      ->expected(0, 1)
+      ->check(kNonEmpty);
   sub->add_option("--speed", o->speed, "video playback speed, e.g. 0.25 for slow motion")
       ->check(finiteIn(0, 1e3, true));
   sub->add_option("--fps", o->fps, "video frames per second")->check(finiteIn(1.0, 240.0));
@@ -170,7 +174,10 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
                 "has been at rest for 0.2 s after landing");
   sub->add_flag("--trace", o->trace, "a jump run also writes each jump's trace (jump-NNN.csv, a sample per tick) "
                                      "into --out");
-  return {sub, [&common, o] { return runCommand(common, *o); }};
+  return {sub, [&common, o, sub] {
+            o->video_requested = sub->count("--video") > 0;
+            return runCommand(common, *o);
+          }};
 }
 
 }  // namespace pronk::cli

@@ -17,18 +17,28 @@ render::VideoOptions videoOptions(const Scenario& scenario, const RunOptions& op
     v.height = r.height;
     v.fps = r.fps;
     v.speed = r.speed;
-    v.path = r.output;
     v.camera = r.camera.mode;
     v.camera_position = Eigen::Vector3d(r.camera.position[0], r.camera.position[1], r.camera.position[2]);
     v.camera_look_at = Eigen::Vector3d(r.camera.look_at[0], r.camera.look_at[1], r.camera.look_at[2]);
     v.fovy_deg = r.camera.fovy_deg;
   }
-  if (!options.video.empty()) v.path = options.video;
+  if (!options.video.empty()) {
+    v.path = options.video;
+  } else if (options.video_requested) {
+    // Bare --video: the scenario's suggested name (or its own name), under --out.
+    if (options.out_dir.empty()) {
+      throw Error("--video without a file name writes the scenario's video under --out DIR: give --out, or "
+                  "--video FILE");
+    }
+    const std::string name = scenario.render && !scenario.render->output.empty() ? scenario.render->output
+                                                                                  : scenario.name + ".mp4";
+    v.path = (std::filesystem::path(options.out_dir) / name).string();
+  }
   if (options.speed > 0) v.speed = options.speed;
   if (options.fps > 0) v.fps = options.fps;
   if (!options.camera.empty()) v.camera = options.camera;
   v.stills = options.stills;
-  if (!v.stills.empty() && v.path.empty()) throw Error("--still needs a video (--video FILE or a <render output>)");
+  if (!v.stills.empty() && v.path.empty()) throw Error("--still needs a video (--video [FILE])");
   if (!options.size.empty()) {
     int w = 0, h = 0;
     char tail = 0;

@@ -248,4 +248,39 @@ TEST(Cli, AModelTooStiffToSimulateFailsOnItsStepBudget) {
   EXPECT_NE(o.output.find("step_budget: the integrator needed more than 500 steps"), std::string::npos) << o.output;
 }
 
+TEST(Cli, AScenarioNeverWritesAVideoByItselfNorOutsideOut) {
+  // A scenario from someone else must not overwrite the user's files: an
+  // absolute or climbing output is refused at its line; a plain name is only a
+  // suggestion, used by a bare --video under --out.
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/render_output";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  auto scenario = [&](const std::string& output) {
+    const std::string file = dir + "/scene.xml";
+    std::ofstream(file) << "<scenario version=\"1\" name=\"scene\" angle=\"rad\">\n"
+                        << "  <include file=\"" << source("scenarios/platforms/go1.xml") << "\"/>\n"
+                        << "  <controller name=\"stand\"/>\n  <sim duration=\"0.1\"/>\n"
+                        << "  <render output=\"" << output << "\"/>\n</scenario>\n";
+    return file;
+  };
+  for (const std::string bad : {std::string("/tmp/victim.txt"), std::string("../victim.mp4"), std::string("a/../../b.mp4")}) {
+    const Outcome o = pronk("validate " + scenario(bad));
+    EXPECT_EQ(o.status, 3) << bad << "\n" << o.output;
+    EXPECT_NE(o.output.find("scene.xml:5: <render>: output=\"" + bad + "\" must be a relative file name"),
+              std::string::npos)
+        << o.output;
+  }
+  const std::string file = scenario("suggested.mp4");
+  const Outcome plain = pronk("run " + file + " --out " + dir + "/plain");
+  EXPECT_EQ(plain.status, 0) << plain.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plain/suggested.mp4"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/suggested.mp4"));
+  const Outcome asked = pronk("run " + file + " --out " + dir + "/asked --video");
+  EXPECT_EQ(asked.status, 0) << asked.output;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/asked/suggested.mp4")) << asked.output;
+  const Outcome no_out = pronk("run " + file + " --video");
+  EXPECT_EQ(no_out.status, 3) << no_out.output;
+  EXPECT_NE(no_out.output.find("--video without a file name"), std::string::npos) << no_out.output;
+}
+
 }  // namespace

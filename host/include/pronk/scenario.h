@@ -170,7 +170,7 @@ struct RenderSpec {
   int width = 1280, height = 720;
   double fps = 30;
   double speed = 1;              // playback speed, 0.25 = slow motion
-  std::string output;            // resolved path ("" = decided by the command)
+  std::string output;            // a suggested relative file name, used under --out by `--video` alone ("" = none)
   CameraSpec camera;
   SourceLocation where;
 };

@@ -1,4 +1,6 @@
 // <render>: video size, frame rate, playback speed, output file and <camera>.
+#include <filesystem>
+
 #include "sections.h"
 
 namespace pronk::scenario_file {
@@ -41,7 +43,18 @@ RenderSpec readRender(const XMLElement& e, const SourceFile& file) {
   s.height = evenSize(r, "height", s.height);
   s.fps = r.number("fps", s.fps, Range::positive());
   s.speed = r.number("speed", s.speed, Range::positive());
-  s.output = r.path("output", s.output);
+  // Only a suggested file name: the command line decides whether a video is
+  // written and where (under --out), so a scenario cannot write a file anywhere.
+  s.output = r.text("output", s.output);
+  if (r.has("output")) {
+    const std::filesystem::path name(s.output);
+    bool climbs = false;
+    for (const auto& part : name) climbs = climbs || part == "..";
+    if (s.output.empty() || name.is_absolute() || climbs) {
+      r.fail("output=\"" + s.output + "\" must be a relative file name without '..': the video goes under the "
+             "command's --out directory, and only when the command asks for a video");
+    }
+  }
   r.rejectUnknownAttributes();
   const auto kids = r.children({"camera"});
   r.rejectRepeated(kids, "camera");
