@@ -61,6 +61,7 @@ Subcommand declareValidate(CLI::App& app, const CommonOptions& common);
 Subcommand declareRun(CLI::App& app, const CommonOptions& common);
 Subcommand declareRender(CLI::App& app, const CommonOptions& common);
 Subcommand declareBench(CLI::App& app, const CommonOptions& common);
+Subcommand declareTrain(CLI::App& app, const CommonOptions& common);
 
 struct RunOptions {
   std::string scenario;

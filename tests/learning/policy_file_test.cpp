@@ -127,6 +127,25 @@ TEST(PolicyFile, SaveThenLoadIsBitExact) {
   EXPECT_EQ(pronk::policyToJson(loaded), readText(path.string()));
 }
 
+TEST(PolicyFile, AResidualRecordsItsPriorInVersion2) {
+  const MlpPolicy policy = pronk::loadPolicy(fixture("valid_residual.json"));
+  ASSERT_TRUE(policy.prior().has_value());
+  EXPECT_EQ(policy.prior()->kind, "prior_action");
+  EXPECT_EQ(policy.prior()->environment, "jump");
+  const std::string text = pronk::policyToJson(policy);
+  EXPECT_EQ(text.rfind("{\n  \"format\": \"pronk-policy\",\n  \"version\": 2,\n", 0), 0u) << text;
+  const MlpPolicy again = pronk::parsePolicy(text, "residual");
+  ASSERT_TRUE(again.prior().has_value());
+  EXPECT_EQ(again.prior()->environment, "jump");
+  // Without a prior the file stays version 1, which older readers know.
+  EXPECT_FALSE(pronk::loadPolicy(fixture("valid.json")).prior().has_value());
+  MlpPolicy plain = policy;
+  plain.setPrior(std::nullopt);
+  EXPECT_EQ(pronk::policyToJson(plain).find("\"prior\""), std::string::npos);
+  EXPECT_NE(pronk::policyToJson(plain).find("\"version\": 1,"), std::string::npos);
+  EXPECT_THROW(plain.setPrior(pronk::PolicyPrior{"prior_action", ""}), pronk::Error);
+}
+
 TEST(PolicyFile, OptionalPartsMayBeLeftOut) {
   const MlpPolicy saved(
       {{Eigen::MatrixXd::Identity(2, 2), Eigen::VectorXd::Zero(2), Activation::Linear}});
@@ -180,7 +199,10 @@ const std::vector<Broken> kBroken = {
     {"not_an_object.json", 1, "a policy file is a JSON object, this is array"},
     {"missing_format.json", 1, "format: missing"},
     {"wrong_format.json", 2, "format: string \"pronk-scenario\" is not \"pronk-policy\""},
-    {"version_2.json", 3, "version: 2 is not supported; this pronk reads version 1"},
+    {"version_3.json", 3, "version: 3 is not supported; this pronk reads versions 1 and 2"},
+    {"prior_in_version_1.json", 6, "prior: unknown key (known keys here: format, version, description, provenance, "
+                                    "observation_size"},
+    {"unknown_prior_kind.json", 6, "prior.kind: string \"ballistic\" is not a known prior (known: \"prior_action\""},
     {"unknown_top_level_key.json", 4, "seed: unknown key"},
     {"duplicate_key.json", 22, "layers[0].activation: duplicate key (first written on line 14)"},
     {"observation_size_zero.json", 6, "observation_size: expected a positive integer, got number 0"},
@@ -232,7 +254,7 @@ TEST(BrokenPolicyFolder, EveryFileIsListed) {
   for (const Broken& b : kBroken) listed.insert(b.file);
   for (const auto& entry : fs::directory_iterator(kPolicies)) {
     const std::string name = entry.path().filename().string();
-    if (name == "valid.json") continue;
+    if (name == "valid.json" || name == "valid_residual.json") continue;
     EXPECT_TRUE(listed.count(name)) << name << " is not in kBroken";
   }
   EXPECT_EQ(listed.size(), kBroken.size());

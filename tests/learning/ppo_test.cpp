@@ -203,6 +203,25 @@ TEST(PpoLearner, ZeroInitialisedActorStartsAtExactlyZero) {
   EXPECT_EQ(learner.policy().act(Eigen::Vector2d(0.3, -0.9)), Eigen::VectorXd::Zero(13));
 }
 
+TEST(PpoLearner, CriticWarmUpFitsTheValueAndLeavesTheActorAlone) {
+  PpoLearner learner(smallConfig(), 2, 2, 5);
+  pronk::Rng env(2);
+  const Bandit bandit;
+  const Eigen::MatrixXd o = Bandit::observations(256, env);
+  const Eigen::VectorXd rewards = bandit.reward(o, bandit.optimum(o) * 0.5);
+  const auto valueError = [&] { return (learner.values(o) - rewards).squaredNorm() / static_cast<double>(o.cols()); };
+  const double before = valueError();
+  const Eigen::VectorXd actor_before = learner.actor().parameters();
+  const double rate = learner.learningRate();
+  const double last_epoch_loss = learner.fitCritic(o, rewards, 30);
+  EXPECT_LT(valueError(), 0.1 * before) << "before " << before;
+  EXPECT_LT(last_epoch_loss, 0.2 * before);
+  EXPECT_EQ(learner.actor().parameters(), actor_before);
+  EXPECT_EQ(learner.learningRate(), rate);
+  EXPECT_EQ(learner.iteration(), 0);
+  EXPECT_EQ(learner.criticOptimizer().state().step, 30 * smallConfig().minibatches);
+}
+
 TEST(AdaptiveLearningRate, FollowsRslRlsRule) {
   const PpoConfig c;  // desired KL 0.01, bounds 1e-5 .. 1e-2
   EXPECT_DOUBLE_EQ(pronk::adaptLearningRate(1e-3, 0.03, c), 1e-3 / 1.5);   // kl > 2 target

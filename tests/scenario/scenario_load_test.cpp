@@ -177,6 +177,72 @@ TEST(ShippedScenarios, TerrainDemoExercisesTheFormat) {
   EXPECT_EQ(s.render->output, (file.parent_path() / "../../out/go1_terrain_demo.mp4").lexically_normal().string());
 }
 
+TEST(Training, ShippedTrainingFilesCoverThePapersRegion) {
+  for (const std::string robot : {"go1", "aliengo"}) {
+    const fs::path urdf = kSource / "assets" / "robots" / robot / (robot + ".urdf");
+    if (!fs::exists(urdf)) GTEST_SKIP() << urdf << " not written yet";
+    const Scenario s = loadScenario((kSource / "scenarios" / "train" / (robot + "_omni.xml")).string());
+    ASSERT_TRUE(s.training.has_value());
+    ASSERT_TRUE(s.environment.has_value());
+    EXPECT_TRUE(s.step_platforms);
+    const pronk::TrainingSpec& t = *s.training;
+    EXPECT_EQ(t.x.min, -0.6);
+    EXPECT_EQ(t.x.max, 1.2);
+    EXPECT_EQ(t.y.min, -0.6);
+    EXPECT_EQ(t.y.max, 0.6);
+    EXPECT_EQ(t.z.min, -0.4);
+    EXPECT_EQ(t.z.max, 0.4);
+    EXPECT_NEAR(t.yaw.min, -kPi / 2, 1e-12);
+    EXPECT_NEAR(t.yaw.max, kPi / 2, 1e-12);
+    EXPECT_EQ(t.actor_hidden_sizes, (std::vector<int>{512, 256, 128}));
+    EXPECT_TRUE(t.residual);
+    EXPECT_TRUE(t.critic_warmup);
+    EXPECT_FALSE(t.mirror);
+  }
+}
+
+TEST(Training, EveryAttributeIsRead) {
+  TempTree tree;
+  const fs::path file = tree.write("train.xml", scenarioWith(tinyPlatform() + R"(<environment name="jump"/>
+<training iterations="7" jumps_per_iteration="12" seed="5" checkpoint_every="3">
+  <region x="-0.1 0.2" y="-0.3 0.4" z="0 0" yaw="-45 30"/>
+  <networks actor="16 8" critic="4"/>
+  <ppo epochs="2" minibatches="3" learning_rate="2e-4" clip="0.1" entropy_coefficient="0.005" desired_kl="0.02"
+       initial_std="0.5"/>
+  <validation count="9" seed="77" every="2"/>
+  <guidance residual="false" critic_warmup="false" critic_warmup_epochs="4" mirror="false"/>
+</training>
+)", "angle=\"deg\""));
+  const Scenario s = loadScenario(file.string());
+  ASSERT_TRUE(s.training.has_value());
+  const pronk::TrainingSpec& t = *s.training;
+  EXPECT_EQ(t.iterations, 7);
+  EXPECT_EQ(t.jumps_per_iteration, 12);
+  EXPECT_EQ(t.seed, 5u);
+  EXPECT_EQ(t.checkpoint_every, 3);
+  EXPECT_EQ(t.x.min, -0.1);
+  EXPECT_EQ(t.y.max, 0.4);
+  EXPECT_EQ(t.z.max, 0);
+  EXPECT_NEAR(t.yaw.min, -kPi / 4, 1e-12);
+  EXPECT_NEAR(t.yaw.max, kPi / 6, 1e-12);
+  EXPECT_EQ(t.actor_hidden_sizes, (std::vector<int>{16, 8}));
+  EXPECT_EQ(t.critic_hidden_sizes, (std::vector<int>{4}));
+  EXPECT_EQ(t.epochs, 2);
+  EXPECT_EQ(t.minibatches, 3);
+  EXPECT_EQ(t.learning_rate, 2e-4);
+  EXPECT_EQ(t.clip, 0.1);
+  EXPECT_EQ(t.entropy_coefficient, 0.005);
+  EXPECT_EQ(t.desired_kl, 0.02);
+  EXPECT_EQ(t.initial_std, 0.5);
+  EXPECT_EQ(t.validation_count, 9);
+  EXPECT_EQ(t.validation_seed, 77u);
+  EXPECT_EQ(t.validate_every, 2);
+  EXPECT_FALSE(t.residual);
+  EXPECT_FALSE(t.critic_warmup);
+  EXPECT_EQ(t.critic_warmup_epochs, 4);
+  EXPECT_EQ(t.where.line, 8);
+}
+
 TEST(Includes, PathsAreRelativeToTheFileThatHoldsThem) {
   TempTree tree;
   tree.copy(kTinyUrdf, "robots/tiny/tiny.urdf");

@@ -3,6 +3,7 @@
 // become trace events.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -59,8 +60,11 @@ struct EnvironmentEpisodeResult {
   double environment_reward = 0;        // finish()'s value even for a failed episode
 };
 
-// A policy: observation -> action; it may ask the environment (e.g. for its prior_action).
-using Policy = std::function<std::vector<double>(const std::vector<double>& observation, EnvironmentInstance& env)>;
+// A policy: observation -> action; it may ask the environment (e.g. for its
+// prior_action). `seed` is the episode's (RolloutPool: its case index), so that
+// an exploring policy can take the case's own noise, whichever thread runs it.
+using Policy = std::function<std::vector<double>(const std::vector<double>& observation, EnvironmentInstance& env,
+                                                 uint64_t seed)>;
 
 EnvironmentEpisodeResult runEnvironmentEpisode(World& world, const pronk_factory& factory, const std::string& origin,
                                                const ResolvedParams& params, const std::vector<double>& task,

@@ -27,6 +27,16 @@ struct MlpLayer {
   Activation activation = Activation::Linear;
 };
 
+// A residual policy's prior: the action is the prior's for the observation
+// plus the network's output. The only kind so far is "prior_action", the
+// environment's own analytic policy (ABI 1.1 prior_action, e.g. the jump
+// environment's ballistic planner), of the environment named here.
+struct PolicyPrior {
+  std::string kind = "prior_action";
+  std::string environment;  // the environment factory's name, e.g. "jump"
+};
+inline constexpr const char* kPriorActionKind = "prior_action";
+
 class MlpPolicy {
  public:
   // Throws pronk::Error when there are no layers, a layer is empty, a bias
@@ -61,6 +71,12 @@ class MlpPolicy {
   void setProvenance(nlohmann::json provenance);  // must be an object
   const nlohmann::json& provenance() const { return provenance_; }
 
+  // A residual over a prior (policy files of version 2); none: the network's
+  // output is the action. Throws pronk::Error for an unknown kind or an empty
+  // environment name.
+  void setPrior(std::optional<PolicyPrior> prior);
+  const std::optional<PolicyPrior>& prior() const { return prior_; }
+
  private:
   struct Normalization {
     Eigen::VectorXd mean, std;
@@ -70,6 +86,7 @@ class MlpPolicy {
   std::optional<Eigen::VectorXd> action_log_std_;
   std::string description_;
   nlohmann::json provenance_ = nlohmann::json::object();
+  std::optional<PolicyPrior> prior_;
 };
 
 // Reads a policy file. Every problem (unreadable file, JSON syntax, a missing,
@@ -79,7 +96,8 @@ MlpPolicy loadPolicy(const std::string& path);
 // The same from text; `name` stands for the file in messages.
 MlpPolicy parsePolicy(const std::string& text, const std::string& name);
 
-// Writes a policy file that loadPolicy reads back bit for bit. The file is
+// Writes a policy file that loadPolicy reads back bit for bit: version 2 for a
+// residual (it has a prior), version 1 otherwise. The file is
 // replaced atomically (written beside it, then renamed), so a reader never
 // sees half a policy. Throws pronk::Error when it cannot be written.
 void savePolicy(const MlpPolicy& policy, const std::string& path);

@@ -122,6 +122,13 @@ class PpoLearner {
   // One PPO iteration on a batch (at least config.minibatches samples).
   PpoUpdateStats update(const PpoBatch& batch);
 
+  // Critic warm-up: fits V(s) alone to the rewards (loss mean (V - r)^2, no
+  // clipping), `epochs` passes of config.minibatches minibatches reshuffled
+  // from the learner's Rng, the critic's gradient clipped and its Adam stepped
+  // at the current learning rate. The actor, the learning rate and
+  // iteration() are left alone. Returns the mean value loss of the last epoch.
+  double fitCritic(const Eigen::MatrixXd& observations, const Eigen::VectorXd& rewards, int epochs);
+
   // The actor as a policy file holds it: layers, observation scaling as the
   // normalisation, log-std. Description and provenance are the caller's.
   MlpPolicy policy() const;

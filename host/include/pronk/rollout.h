@@ -103,12 +103,15 @@ class RolloutPool {
 // The environment run a scenario asks for: its <environment> factory found in
 // `registry`, its parameters resolved with `overrides` set over the file's
 // (each reported against its own location), and the policy `policy_name`
-// ("ballistic" or a policy file). Throws InputError naming the file or flag.
+// ("ballistic" or a policy file; "" leaves setup.policy to the caller, e.g.
+// training's exploring policy). Throws InputError naming the file or flag.
 RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& registry,
                               const std::vector<ParamSetting>& overrides, const std::string& policy_name);
 
-// "ballistic": the environment's prior_action; otherwise a policy file.
-// Throws InputError for a file that cannot be used with `factory`.
+// "ballistic": the environment's prior_action; otherwise a policy file, which
+// for a residual (a version-2 file with a prior) gives prior_action + network.
+// Throws InputError naming the file when it cannot be used with `factory` (its
+// sizes, or a residual over another environment or one without prior_action).
 Policy makePolicy(const std::string& name, const pronk_factory& factory);
 
 }  // namespace pronk

@@ -175,6 +175,47 @@ struct RenderSpec {
   SourceLocation where;
 };
 
+// <training>: what `pronk train` does with the scenario (docs/scenario-format.md,
+// docs/training.md). Targets are drawn uniformly from the region; heights use
+// the terrain's step_platforms. Angles in rad.
+struct TrainingRange {
+  double min = 0, max = 0;
+};
+
+struct TrainingSpec {
+  // The task region, relative to the start as a target's x, y, z, yaw.
+  TrainingRange x, y, z, yaw;
+  SourceLocation region_where;
+  int iterations = 100;
+  int jumps_per_iteration = 256;
+  unsigned long seed = 1;
+  int checkpoint_every = 10;           // iterations between checkpoints (and policy files)
+  // Hidden layers of the actor (the residual's MLP) and of the critic.
+  std::vector<int> actor_hidden_sizes{512, 256, 128};
+  std::vector<int> critic_hidden_sizes{512, 256, 128};
+  // PPO (pronk/ppo.h); the rest of PpoConfig keeps its defaults.
+  int epochs = 10;
+  int minibatches = 4;
+  double learning_rate = 1e-3;
+  double clip = 0.2;
+  double entropy_coefficient = 0.01;
+  double desired_kl = 0.01;
+  double initial_std = 0.3;            // of the Gaussian over the (residual) raw action
+  // A fixed seeded target set, drawn from its own stream, that the mean policy
+  // jumps every `validate_every` iterations.
+  int validation_count = 100;
+  unsigned long validation_seed = 1000;
+  int validate_every = 10;
+  // Guidance: the planner as prior (action = prior_action + residual, the
+  // residual's last layer zero at the start); the critic fitted to the first
+  // batch before the first actor update; mirror symmetry (not built yet).
+  bool residual = true;
+  bool critic_warmup = true;
+  int critic_warmup_epochs = 20;
+  bool mirror = false;
+  SourceLocation where;
+};
+
 struct Scenario {
   std::string file;              // absolute path of the top-level file
   std::string name;
@@ -192,6 +233,7 @@ struct Scenario {
   std::vector<TargetSpec> targets;
   std::vector<SweepSpec> sweeps;
   std::optional<RenderSpec> render;
+  std::optional<TrainingSpec> training;        // `pronk train`; needs an <environment>
 };
 
 // The names the format accepts, kept here and nowhere else (the scenario reader

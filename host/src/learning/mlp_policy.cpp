@@ -85,6 +85,14 @@ const Eigen::VectorXd& MlpPolicy::actionLogStd() const {
   return *action_log_std_;
 }
 
+void MlpPolicy::setPrior(std::optional<PolicyPrior> prior) {
+  if (prior && prior->kind != kPriorActionKind) {
+    throw Error("policy: prior.kind: unknown prior \"" + prior->kind + "\" (known: " + kPriorActionKind + ")");
+  }
+  if (prior && prior->environment.empty()) throw Error("policy: prior.environment: empty");
+  prior_ = std::move(prior);
+}
+
 void MlpPolicy::setProvenance(nlohmann::json provenance) {
   if (!provenance.is_object()) {
     throw Error("policy: provenance: expected a JSON object, got " + std::string(provenance.type_name()));

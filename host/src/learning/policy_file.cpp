@@ -19,7 +19,8 @@ using policy_file::JsonPath;
 using policy_file::Problem;
 
 constexpr const char* kFormat = "pronk-policy";
-constexpr int kVersion = 1;
+constexpr int kVersion = 1;          // a policy whose network output is the action
+constexpr int kResidualVersion = 2;  // and one with a prior (a residual): the newest this reader knows
 
 // nlohmann's what() without its "[json.exception.parse_error.101] parse error
 // at line 2, column 11: " prefix: we say where ourselves.
@@ -62,10 +63,11 @@ class PolicyReader {
     const JsonPath root;
     if (!doc.is_object()) fail(root, "a policy file is a JSON object, this is " + describe(doc));
 
-    checkFormatAndVersion(doc);
-    checkKeys(doc, root,
-              {"format", "version", "description", "provenance", "observation_size", "action_size",
-               "observation_normalization", "layers", "action_log_std"});
+    const int version = checkFormatAndVersion(doc);
+    std::vector<std::string> keys = {"format", "version", "description", "provenance", "observation_size",
+                                     "action_size", "observation_normalization", "layers", "action_log_std"};
+    if (version >= kResidualVersion) keys.insert(keys.begin() + 4, "prior");
+    checkKeys(doc, root, keys);
 
     const int observation_size = positiveInt(required(doc, root, "observation_size"), root.key("observation_size"));
     const int action_size = positiveInt(required(doc, root, "action_size"), root.key("action_size"));
@@ -106,6 +108,7 @@ class PolicyReader {
       if (!p.is_object()) fail(root.key("provenance"), "expected an object, got " + describe(p));
       policy.setProvenance(p);
     }
+    if (doc.contains("prior")) policy.setPrior(readPrior(doc["prior"], root.key("prior")));
     return policy;
   }
 
@@ -148,7 +151,25 @@ class PolicyReader {
     }
   }
 
-  void checkFormatAndVersion(const json& doc) const {
+  PolicyPrior readPrior(const json& v, const JsonPath& path) const {
+    if (!v.is_object()) fail(path, "expected an object with kind and environment, got " + describe(v));
+    checkKeys(v, path, {"kind", "environment"});
+    PolicyPrior prior;
+    const json& kind = required(v, path, "kind");
+    if (kind != kPriorActionKind) {
+      fail(path.key("kind"), describe(kind) + " is not a known prior (known: \"" + kPriorActionKind +
+                                 "\", the environment's prior_action)");
+    }
+    const json& environment = required(v, path, "environment");
+    if (!environment.is_string() || environment.get<std::string>().empty()) {
+      fail(path.key("environment"), "expected the environment's name, got " + describe(environment));
+    }
+    prior.environment = environment.get<std::string>();
+    return prior;
+  }
+
+  // The file's version: 1 or 2.
+  int checkFormatAndVersion(const json& doc) const {
     const JsonPath format = JsonPath().key("format");
     if (!doc.contains("format")) {
       fail(format, "missing; a policy file says \"format\": \"" + std::string(kFormat) + "\"");
@@ -159,9 +180,11 @@ class PolicyReader {
     const JsonPath version = JsonPath().key("version");
     const json& v = required(doc, JsonPath(), "version");
     if (!v.is_number_integer()) fail(version, "expected an integer, got " + describe(v));
-    if (v != kVersion) {
-      fail(version, v.dump() + " is not supported; this pronk reads version " + std::to_string(kVersion));
+    if (v != kVersion && v != kResidualVersion) {
+      fail(version, v.dump() + " is not supported; this pronk reads versions " + std::to_string(kVersion) + " and " +
+                        std::to_string(kResidualVersion));
     }
+    return v.get<int>();
   }
 
   // Unknown keys are errors (a misspelt optional key would otherwise be
@@ -294,9 +317,13 @@ MlpPolicy loadPolicy(const std::string& path) {
 std::string policyToJson(const MlpPolicy& policy) {
   nlohmann::ordered_json doc;
   doc["format"] = kFormat;
-  doc["version"] = kVersion;
+  doc["version"] = policy.prior() ? kResidualVersion : kVersion;
   if (!policy.description().empty()) doc["description"] = policy.description();
   if (!policy.provenance().empty()) doc["provenance"] = nlohmann::ordered_json(policy.provenance());
+  if (policy.prior()) {
+    doc["prior"]["kind"] = policy.prior()->kind;
+    doc["prior"]["environment"] = policy.prior()->environment;
+  }
   doc["observation_size"] = policy.observationSize();
   doc["action_size"] = policy.actionSize();
   if (policy.hasObservationNormalization()) {

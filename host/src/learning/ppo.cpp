@@ -205,6 +205,45 @@ PpoUpdateStats PpoLearner::update(const PpoBatch& batch) {
   return stats;
 }
 
+double PpoLearner::fitCritic(const Eigen::MatrixXd& observations, const Eigen::VectorXd& rewards, int epochs) {
+  const Eigen::Index n = observations.cols();
+  require(observations.rows() == observationSize() && rewards.size() == n,
+          "fitCritic: one observation column and one reward per sample expected");
+  require(n >= config_.minibatches, "fitCritic: a batch of " + std::to_string(n) + " samples cannot fill " +
+                                        std::to_string(config_.minibatches) + " minibatches");
+  require(epochs >= 1, "fitCritic: epochs must be >= 1");
+  checkFinite(observations, "observations");
+  checkFinite(rewards, "rewards");
+  const Eigen::MatrixXd inputs = scaling_.apply(observations);
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  double last_epoch_loss = 0;
+  for (int epoch = 0; epoch < epochs; ++epoch) {
+    std::iota(order.begin(), order.end(), Eigen::Index{0});
+    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng_.below(i)]);
+    last_epoch_loss = 0;
+    for (int k = 0; k < config_.minibatches; ++k) {
+      const std::size_t begin = static_cast<std::size_t>(n) * k / config_.minibatches;
+      const std::size_t end = static_cast<std::size_t>(n) * (k + 1) / config_.minibatches;
+      const std::vector<Eigen::Index> idx(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                                          order.begin() + static_cast<std::ptrdiff_t>(end));
+      const Eigen::MatrixXd x = columns(inputs, idx);
+      const Eigen::VectorXd r = entries(rewards, idx);
+      Mlp::Tape tape;
+      const Eigen::VectorXd v = critic_.forward(x, &tape).row(0).transpose();
+      const double m = static_cast<double>(idx.size());
+      const Eigen::VectorXd error = v - r;
+      last_epoch_loss += error.squaredNorm() / m / config_.minibatches;
+      const Eigen::MatrixXd output_gradient = (2.0 / m) * error.transpose();
+      Eigen::VectorXd gradient = critic_.backward(tape, output_gradient);
+      clipGradientNorm(gradient, config_.max_gradient_norm);
+      Eigen::VectorXd parameters = critic_.parameters();
+      critic_adam_.step(parameters, gradient, learning_rate_);
+      critic_.setParameters(parameters);
+    }
+  }
+  return last_epoch_loss;
+}
+
 MlpPolicy PpoLearner::policy() const {
   MlpPolicy policy(actor_.meanNetwork().layers());
   policy.setObservationNormalization(scaling_.mean(), scaling_.std());

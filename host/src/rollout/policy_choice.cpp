@@ -1,5 +1,6 @@
 // The policies `pronk run --policy` knows: the environment's analytic prior, or
-// a policy file (docs/policy-format.md).
+// a policy file (docs/policy-format.md), which may be a residual over that
+// prior (version 2: action = prior_action + network).
 #include <memory>
 
 #include "pronk/policy.h"
@@ -13,7 +14,9 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
       throw Error(std::string("--policy ballistic: environment '") + factory.name +
                   "' has no analytic policy (prior_action)");
     }
-    return [](const std::vector<double>& observation, EnvironmentInstance& env) { return env.priorAction(observation); };
+    return [](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t) {
+      return env.priorAction(observation);
+    };
   }
   auto network = std::make_shared<const MlpPolicy>(loadPolicy(name));
   if (network->observationSize() != factory.observation_size || network->actionSize() != factory.action_size) {
@@ -23,10 +26,30 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
                                                   std::to_string(factory.observation_size) + " and takes " +
                                                   std::to_string(factory.action_size));
   }
-  return [network](const std::vector<double>& observation, EnvironmentInstance&) {
+  const auto act = [network](const std::vector<double>& observation) {
     const Eigen::VectorXd a =
         network->act(Eigen::Map<const Eigen::VectorXd>(observation.data(), static_cast<Eigen::Index>(observation.size())));
     return std::vector<double>(a.data(), a.data() + a.size());
+  };
+  if (!network->prior()) {
+    return [act](const std::vector<double>& observation, EnvironmentInstance&, uint64_t) { return act(observation); };
+  }
+  const PolicyPrior& prior = *network->prior();
+  if (prior.environment != factory.name) {
+    throw InputError(SourceLocation{name, 0}, "a residual over environment '" + prior.environment +
+                                                  "''s prior_action; this scenario's environment is '" + factory.name +
+                                                  "'");
+  }
+  if (factory.environment->prior_action == nullptr) {
+    throw InputError(SourceLocation{name, 0}, "a residual over the prior_action of environment '" + prior.environment +
+                                                  "', but that environment (" + factory.name +
+                                                  ") has no prior_action");
+  }
+  return [act](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t) {
+    std::vector<double> action = env.priorAction(observation);
+    const std::vector<double> residual = act(observation);
+    for (size_t i = 0; i < action.size(); ++i) action[i] += residual[i];
+    return action;
   };
 }
 

@@ -150,7 +150,7 @@ RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& re
   std::vector<ParamSetting> params = spec.params;
   for (const ParamSetting& p : overrides) setParam(params, p);
   setup.params = resolveParams(*setup.factory, params, spec.where);
-  setup.policy = makePolicy(policy_name, *setup.factory);
+  if (!policy_name.empty()) setup.policy = makePolicy(policy_name, *setup.factory);
   return setup;
 }
 

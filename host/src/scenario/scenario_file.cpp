@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -157,7 +158,8 @@ void Loader::readRoot(const XMLElement& root, SourceFile& file, bool top) {
   }
   r.rejectUnknownAttributes();
   const auto kids =
-      r.children({"include", "platform", "controller", "environment", "sim", "terrain", "targets", "sweeps", "render"});
+      r.children({"include", "platform", "controller", "environment", "sim", "terrain", "targets", "sweeps", "render",
+                  "training"});
   for (const XMLElement* k : kids) {
     if (std::string(k->Name()) == "include") {
       include(*k, file);
@@ -233,6 +235,7 @@ void Loader::dispatch(Scenario& scenario) {
     else if (name == "targets") scenario.targets = scenario_file::readTargets(e, f);
     else if (name == "sweeps") scenario.sweeps = scenario_file::readSweeps(e, f);
     else if (name == "render") scenario.render = scenario_file::readRender(e, f);
+    else if (name == "training") scenario.training = scenario_file::readTraining(e, f);
   }
   if (part_) {
     if (scenario_controller) scenario.platform.controller = *scenario_controller;
@@ -252,7 +255,31 @@ void Loader::dispatch(Scenario& scenario) {
   }
 }
 
+// <training> trains a policy for the scenario's <environment>, and targets with
+// heights stand on step platforms.
+void checkTraining(const Scenario& scenario) {
+  if (!scenario.training) return;
+  const TrainingSpec& t = *scenario.training;
+  if (!scenario.environment) {
+    throw InputError(t.where, "<training>: needs an <environment> (the task the policy is trained on)");
+  }
+  const bool heights = t.z.min != 0 || t.z.max != 0;
+  if (heights && !scenario.step_platforms) {
+    throw InputError(t.region_where, "<region>: z spans [" + scenario_file::formatNumber(t.z.min) + ", " +
+                                         scenario_file::formatNumber(t.z.max) +
+                                         "] m: targets with heights need <terrain step_platforms=\"true\">");
+  }
+  // A target with a height needs its platform's edge between start and target.
+  const double far_x = std::max(std::abs(t.x.min), std::abs(t.x.max));
+  const double far_y = std::max(std::abs(t.y.min), std::abs(t.y.max));
+  if (heights && std::hypot(far_x, far_y) < 0.2) {
+    throw InputError(t.region_where, "<region>: targets with heights must lie >= 0.1 m from the start (their step "
+                                     "platform's edge goes between); this x, y box stays within 0.2 m of it");
+  }
+}
+
 void Loader::checkAcrossElements(Scenario& scenario) const {
+  if (!part_) checkTraining(scenario);  // a part on its own needs nothing else
   const PlatformSpec& p = scenario.platform;
   const auto root = scenario_file::urdfRootBody(p.urdf);
   const auto massMessage = [&](double offset) {

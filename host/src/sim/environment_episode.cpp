@@ -42,7 +42,7 @@ EnvironmentEpisodeResult runEnvironmentEpisode(World& world, const pronk_factory
     const AbiStateView view(world.state());
     out.observation = env.reset(task, seed, *view.get());
   }
-  out.action = policy(out.observation, env);
+  out.action = policy(out.observation, env, seed);
   out.rejected = env.act(out.action);
   if (out.rejected) {
     out.episode.trace.joint_names = world.jointNames();

@@ -1,0 +1,144 @@
+// `pronk train FILE --out POLICY`: trains a policy for the scenario's
+// environment as its <training> element says (the loop is the library's,
+// pronk/training.h); here the options, a progress line per iteration, and
+// SIGINT / SIGTERM turned into a checkpoint.
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "pronk/controller_factory.h"
+#include "pronk/training.h"
+#include "run_jumps.h"
+
+namespace pronk::cli {
+namespace {
+
+std::atomic<bool> g_stop_requested{false};
+
+extern "C" void requestStop(int) { g_stop_requested = true; }
+
+struct TrainOptions {
+  std::string file;
+  std::string out;
+  std::string resume;
+  int jobs = 0;
+  int iterations = 0;  // 0: the file's
+  int jumps = 0;       // 0: the file's
+  unsigned long seed = 0;
+  bool seed_given = false;
+};
+
+// "1:02:03", or "-" when unknown.
+std::string hms(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "-";
+  const long s = std::lround(seconds);
+  char text[32];
+  std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  return text;
+}
+
+void printRow(const TrainingIteration& r) {
+  std::printf("iter %4d/%d  jumps %7lld", r.iteration, r.iterations, r.jumps);
+  if (r.iteration > 0) {
+    std::printf("  reward %.3f  landed %d/%d (failed %d, rejected %d)", r.reward_mean, r.batch.landed, r.batch.jumps,
+                r.batch.failed, r.batch.rejected);
+  }
+  if (r.validated) {
+    std::printf("  val median %.3f m, %.0f %% < 0.2 m, failed %d, rejected %d", r.validation.error_median,
+                100 * r.validation.within_02, r.validation.failed, r.validation.rejected);
+  }
+  if (r.iteration > 0) std::printf("  %.1f jumps/s  ETA %s", r.jumps_per_s, hms(r.eta_s).c_str());
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+std::string commandLine(const TrainOptions& o) {
+  std::string c = "pronk train " + o.file + " --out " + o.out;
+  if (o.jobs > 0) c += " --jobs " + std::to_string(o.jobs);
+  if (o.iterations > 0) c += " --iterations " + std::to_string(o.iterations);
+  if (o.jumps > 0) c += " --jumps " + std::to_string(o.jumps);
+  if (o.seed_given) c += " --seed " + std::to_string(o.seed);
+  if (!o.resume.empty()) c += " --resume " + o.resume;
+  return c;
+}
+
+int trainCommand(const CommonOptions& common, const TrainOptions& o) {
+  const Scenario scenario = loadScenario(o.file);
+  if (!scenario.training) {
+    throw InputError({o.file, 0}, "no <training> element: nothing to train (docs/scenario-format.md)");
+  }
+  PluginRegistry registry;
+  const EnvironmentSpec& spec = *scenario.environment;  // loadScenario: <training> needs an <environment>
+  ControllerSpec as_controller{spec.factory, spec.plugin, spec.params, spec.where};
+  loadPlugins(registry, common.plugin_paths, &as_controller);
+
+  TrainingRunOptions run;
+  run.threads = jobsOf(o.jobs);
+  if (o.iterations > 0) run.iterations = o.iterations;
+  if (o.jumps > 0) run.jumps_per_iteration = o.jumps;
+  if (o.seed_given) run.seed = o.seed;
+  run.policy_path = o.out;
+  run.resume = o.resume;
+  run.command = commandLine(o);
+
+  const TrainingSpec& t = *scenario.training;
+  std::printf("training    %s\n", o.file.c_str());
+  std::printf("environment %s, %s, %d iteration(s) x %d jumps, seed %lu, %d thread(s)%s\n", spec.factory.c_str(),
+              t.residual ? "residual over its prior_action" : "no prior", run.iterations.value_or(t.iterations),
+              run.jumps_per_iteration.value_or(t.jumps_per_iteration), run.seed.value_or(t.seed), run.threads,
+              o.resume.empty() ? "" : (", resuming " + o.resume).c_str());
+  std::fflush(stdout);
+
+  g_stop_requested = false;
+  std::signal(SIGINT, requestStop);
+  std::signal(SIGTERM, requestStop);
+  const TrainingOutcome outcome = trainPolicy(scenario, registry, run, printRow, &g_stop_requested);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+
+  if (outcome.interrupted) {
+    std::printf("stopped after iteration %d (%lld jumps, %s); continue with --resume %s\n", outcome.iterations_done,
+                outcome.jumps, hms(outcome.wall_s).c_str(), outcome.checkpoint_path.c_str());
+  } else {
+    std::printf("trained %d iteration(s), %lld jumps in %s\n", outcome.iterations_done, outcome.jumps,
+                hms(outcome.wall_s).c_str());
+  }
+  std::printf("wrote %s, %s, %s\n", outcome.policy_path.c_str(), outcome.checkpoint_path.c_str(),
+              outcome.log_path.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+Subcommand declareTrain(CLI::App& app, const CommonOptions& common) {
+  auto o = std::make_shared<TrainOptions>();
+  CLI::App* sub = app.add_subcommand("train", "train a policy with PPO as a scenario's <training> element says");
+  sub->add_option("file", o->file, "training file: a scenario with <environment> and <training>")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--out", o->out, "the policy file to write; its checkpoint (STEM.checkpoint.json) and "
+                                   "train_log.csv go beside it")
+      ->required();
+  sub->add_option("--jobs", o->jobs, "worker threads, one World each (default: one per core); the result does not "
+                                     "depend on it")
+      ->check(CLI::Range(1, 1024));
+  sub->add_option("--iterations", o->iterations, "iterations of the whole run (default: the file's)")
+      ->check(CLI::Range(1, 1000000));
+  sub->add_option("--jumps", o->jumps, "jumps per iteration (default: the file's jumps_per_iteration)")
+      ->check(CLI::Range(1, 1000000));
+  CLI::Option* seed = sub->add_option("--seed", o->seed, "random seed (default: the file's)")
+                          ->check(CLI::Range(0ul, 4294967295ul));
+  sub->add_option("--resume", o->resume, "continue from this checkpoint (a run with the same file, --jumps and "
+                                         "--seed continues bit for bit)")
+      ->check(CLI::ExistingFile);
+  return {sub, [&common, o, seed] {
+            o->seed_given = seed->count() > 0;
+            return trainCommand(common, *o);
+          }};
+}
+
+}  // namespace pronk::cli

@@ -1,0 +1,517 @@
+// trainPolicy: the training loop of `pronk train` (pronk/training.h): targets
+// and noise drawn on the calling thread, the jumps through one RolloutPool,
+// PPO on the residuals, validation of the mean policy, the log, checkpoints
+// and policy files.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "pronk/error.h"
+#include "pronk/ppo.h"
+#include "pronk/report.h"
+#include "pronk/rollout.h"
+#include "pronk/training.h"
+#include "training_files.h"
+#include "training_streams.h"
+
+namespace pronk {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// What the exploring policy of one case drew, written by the worker that runs
+// the case (each case by one worker) and read after pool.run.
+struct CaseDraw {
+  bool ran = false;
+  Eigen::VectorXd residual;  // the sampled network action (PPO's Gaussian sample)
+};
+
+// What the rollout's policy reads: set on the calling thread before pool.run
+// and left alone while it runs.
+struct PolicyState {
+  const PpoLearner* learner = nullptr;
+  bool residual = true;
+  const Eigen::MatrixXd* noise = nullptr;  // action x cases standard normals; null: the mean policy
+  std::vector<CaseDraw>* draws = nullptr;  // one per case; null: nothing recorded
+};
+
+// action = prior_action(observation) + mean(observation) + std * noise[case].
+Policy explorationPolicy(std::shared_ptr<const PolicyState> state) {
+  return [state](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t seed) {
+    const PolicyState& s = *state;
+    Eigen::VectorXd residual = s.learner->mean(
+        Eigen::Map<const Eigen::VectorXd>(observation.data(), static_cast<Eigen::Index>(observation.size())));
+    if (s.noise) {
+      if (seed >= static_cast<uint64_t>(s.noise->cols())) throw Error("training: a case without its noise");
+      const Eigen::VectorXd& log_std = s.learner->actor().logStd();
+      for (Eigen::Index i = 0; i < residual.size(); ++i) {
+        residual[i] += std::exp(log_std[i]) * (*s.noise)(i, static_cast<Eigen::Index>(seed));
+      }
+    }
+    std::vector<double> action(static_cast<size_t>(residual.size()), 0.0);
+    if (s.residual) action = env.priorAction(observation);
+    for (size_t i = 0; i < action.size(); ++i) action[i] += residual[static_cast<Eigen::Index>(i)];
+    if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual)};
+    return action;
+  };
+}
+
+// Standard normals, one column per case, drawn column by column.
+Eigen::MatrixXd drawNoise(Rng& rng, int rows, int cases) {
+  Eigen::MatrixXd z(rows, cases);
+  for (int c = 0; c < cases; ++c)
+    for (int i = 0; i < rows; ++i) z(i, c) = rng.normal();
+  return z;
+}
+
+// Landing figures of a jump set, as the report judges each jump.
+class FiguresSink {
+ public:
+  void add(const EpisodeRecord& r) {
+    ++f_.jumps;
+    if (r.setup_error) {
+      ++f_.setup_errors;
+      return;
+    }
+    const JumpOutcome o = judgeJump(r);
+    if (o.status == "failed") ++f_.failed;
+    if (o.status == "rejected") ++f_.rejected;
+    if (o.status == "ok" || o.status == "missed") {
+      ++f_.landed;
+      errors_.push_back(o.landing.error_xy);
+      if (o.landing.error_xy <= 0.2) ++within_;
+    }
+  }
+  JumpSetFigures figures() const {
+    JumpSetFigures f = f_;
+    f.error_median = median(errors_);
+    f.error_mean = errors_.empty() ? kNaN : std::accumulate(errors_.begin(), errors_.end(), 0.0) / errors_.size();
+    f.within_02 = f.jumps > 0 ? static_cast<double>(within_) / f.jumps : kNaN;
+    return f;
+  }
+
+ private:
+  JumpSetFigures f_;
+  std::vector<double> errors_;
+  int within_ = 0;
+};
+
+PpoConfig ppoConfigOf(const TrainingSpec& t) {
+  PpoConfig c;
+  c.actor_hidden_sizes = t.actor_hidden_sizes;
+  c.critic_hidden_sizes = t.critic_hidden_sizes;
+  c.actor_init.zero_last_layer = t.residual;  // iteration 0 is exactly the prior
+  c.initial_std = t.initial_std;
+  c.loss.clip = t.clip;
+  c.loss.entropy_coefficient = t.entropy_coefficient;
+  c.epochs = t.epochs;
+  c.minibatches = t.minibatches;
+  c.learning_rate = t.learning_rate;
+  c.desired_kl = t.desired_kl;
+  return c;
+}
+
+// The settings a resumed run must share with the checkpoint's to continue it.
+json settingsJson(const TrainingSpec& t) {
+  return {{"seed", t.seed},
+          {"jumps_per_iteration", t.jumps_per_iteration},
+          {"region", {t.x.min, t.x.max, t.y.min, t.y.max, t.z.min, t.z.max, t.yaw.min, t.yaw.max}},
+          {"actor_hidden_sizes", t.actor_hidden_sizes},
+          {"critic_hidden_sizes", t.critic_hidden_sizes},
+          {"epochs", t.epochs},
+          {"minibatches", t.minibatches},
+          {"learning_rate", t.learning_rate},
+          {"clip", t.clip},
+          {"entropy_coefficient", t.entropy_coefficient},
+          {"desired_kl", t.desired_kl},
+          {"initial_std", t.initial_std},
+          {"residual", t.residual},
+          {"critic_warmup", t.critic_warmup},
+          {"critic_warmup_epochs", t.critic_warmup_epochs},
+          {"mirror", t.mirror}};
+}
+
+// Observation scaling: the task region onto [-1, 1] when the observation is
+// the task (x, y, z, yaw, roll, pitch) as the jump environment's is; otherwise none.
+ObservationScaling scalingOf(const TrainingSpec& t, int observation_size) {
+  if (observation_size != 6) return ObservationScaling::identity(observation_size);
+  Eigen::VectorXd low(6), high(6);
+  low << t.x.min, t.y.min, t.z.min, t.yaw.min, 0, 0;
+  high << t.x.max, t.y.max, t.z.max, t.yaw.max, 0, 0;
+  return ObservationScaling::fromBox(low, high);
+}
+
+class Trainer {
+ public:
+  Trainer(const Scenario& scenario, const PluginRegistry& registry, const TrainingRunOptions& options,
+          const TrainingProgress& on_row, const std::atomic<bool>* stop)
+      : scenario_(scenario), options_(options), on_row_(on_row), stop_(stop), spec_(specOf(scenario, options)),
+        sampler_(spec_), target_rng_(training_streams::targetSeed(spec_.seed)),
+        noise_rng_(training_streams::noiseSeed(spec_.seed)), validation_(validationCases(spec_)) {
+    RolloutSetup setup = environmentSetup(scenario, registry, {}, "");
+    factory_name_ = setup.factory->name;
+    origin_ = setup.origin;
+    if (spec_.residual && setup.factory->environment->prior_action == nullptr) {
+      throw InputError(spec_.where, "<training>: residual=\"true\" needs the environment's prior_action as its prior; "
+                                    "environment '" + factory_name_ + "' has none (write <guidance residual=\"false\">)");
+    }
+    observation_size_ = setup.factory->observation_size;
+    action_size_ = setup.factory->action_size;
+    state_ = std::make_shared<PolicyState>();
+    state_->residual = spec_.residual;
+    setup.policy = explorationPolicy(state_);
+    paths_.policy = options.policy_path;
+    paths_.checkpoint = checkpointPathFor(options.policy_path);
+    paths_.log = (fs::path(options.policy_path).parent_path() / "train_log.csv").string();
+    if (!options.resume.empty()) {
+      resume(options.resume);
+    } else {
+      learner_ = std::make_unique<PpoLearner>(ppoConfigOf(spec_), scalingOf(spec_, observation_size_), action_size_,
+                                              spec_.seed);
+    }
+    state_->learner = learner_.get();
+    RolloutOptions rollout;
+    rollout.threads = std::max(1, options.threads);
+    pool_ = std::make_unique<RolloutPool>(std::move(setup), rollout);
+  }
+
+  TrainingOutcome run() {
+    start_ = Clock::now();
+    TrainingOutcome out;
+    out.policy_path = paths_.policy;
+    out.checkpoint_path = paths_.checkpoint;
+    out.log_path = paths_.log;
+    if (done_ == 0 && log_.empty() && spec_.validation_count > 0) {
+      TrainingIteration row = newRow(0);
+      const auto t0 = Clock::now();
+      row.validated = validate(row.validation);
+      row.validation_s = secondsSince(t0);
+      if (!row.validated) return finish(out, true);
+      finishRow(row);
+    }
+    for (int k = done_ + 1; k <= spec_.iterations; ++k) {
+      const bool whole = iterate(k);
+      if (!whole || stopRequested()) return finish(out, true);
+      if (k % spec_.checkpoint_every == 0 && k < spec_.iterations) save();
+    }
+    return finish(out, false);
+  }
+
+ private:
+  struct Paths {
+    std::string policy, checkpoint, log;
+  };
+
+  static TrainingSpec specOf(const Scenario& scenario, const TrainingRunOptions& options) {
+    if (!scenario.training) {
+      throw InputError({scenario.file, 0}, "no <training> element: nothing to train (docs/scenario-format.md)");
+    }
+    TrainingSpec t = *scenario.training;
+    if (options.iterations) t.iterations = *options.iterations;
+    if (options.jumps_per_iteration) t.jumps_per_iteration = *options.jumps_per_iteration;
+    if (options.seed) t.seed = *options.seed;
+    if (t.iterations < 1) throw Error("--iterations: must be >= 1");
+    if (t.jumps_per_iteration < t.minibatches) {
+      throw Error("--jumps " + std::to_string(t.jumps_per_iteration) + ": must be >= the <ppo> minibatches (" +
+                  std::to_string(t.minibatches) + ")");
+    }
+    return t;
+  }
+
+  bool stopRequested() const { return stop_ && stop_->load(); }
+
+  TrainingIteration newRow(int k) const {
+    TrainingIteration row;
+    row.iteration = k;
+    row.iterations = spec_.iterations;
+    row.jumps = jumps_;
+    for (double* v : {&row.reward_mean, &row.reward_std, &row.critic_warmup_loss, &row.policy_loss, &row.value_loss,
+                      &row.entropy, &row.kl, &row.clip_fraction, &row.learning_rate, &row.std_mean, &row.value_mean,
+                      &row.actor_gradient_norm, &row.critic_gradient_norm, &row.jumps_per_s,
+                      &row.batch.error_median, &row.batch.error_mean, &row.batch.within_02,
+                      &row.validation.error_median, &row.validation.error_mean, &row.validation.within_02}) {
+      *v = kNaN;
+    }
+    return row;
+  }
+
+  // The mean policy over the validation set; false when stopped.
+  bool validate(JumpSetFigures& figures) {
+    state_->noise = nullptr;
+    state_->draws = nullptr;
+    FiguresSink sink;
+    const size_t delivered = pool_->run(validation_, [&](EpisodeRecord& r) {
+      if (stopRequested()) pool_->stop();
+      sink.add(r);
+    });
+    figures = sink.figures();
+    return delivered == validation_.size() && !stopRequested();
+  }
+
+  // Iteration k: false when stopped before its update (nothing of it is kept).
+  bool iterate(int k) {
+    TrainingIteration row = newRow(k);
+    const Rng::State target_state = target_rng_.state(), noise_state = noise_rng_.state();
+    const int n = spec_.jumps_per_iteration;
+    const std::vector<EpisodeCase> cases = sampler_.cases(target_rng_, n, "iteration " + std::to_string(k));
+    const Eigen::MatrixXd noise = drawNoise(noise_rng_, action_size_, n);
+    std::vector<CaseDraw> draws(static_cast<size_t>(n));
+    state_->noise = &noise;
+    state_->draws = &draws;
+    std::vector<std::vector<double>> observations(static_cast<size_t>(n));
+    Eigen::VectorXd rewards = Eigen::VectorXd::Zero(n);
+    FiguresSink sink;
+    const auto t0 = Clock::now();
+    const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
+      if (stopRequested()) pool_->stop();
+      sink.add(r);
+      observations[r.index] = r.result.observation;
+      rewards[static_cast<Eigen::Index>(r.index)] = r.result.reward;
+    });
+    state_->noise = nullptr;
+    state_->draws = nullptr;
+    row.rollout_s = secondsSince(t0);
+    if (delivered < cases.size() || stopRequested()) {
+      target_rng_.setState(target_state);
+      noise_rng_.setState(noise_state);
+      return false;
+    }
+    row.batch = sink.figures();
+    row.jumps_per_s = n / std::max(row.rollout_s, 1e-9);
+
+    // The batch: the cases whose policy ran (a case that could not be set up has none).
+    std::vector<Eigen::Index> used;
+    for (int i = 0; i < n; ++i)
+      if (draws[static_cast<size_t>(i)].ran) used.push_back(i);
+    const Eigen::Index m = static_cast<Eigen::Index>(used.size());
+    if (m < spec_.minibatches) {
+      throw Error("training: iteration " + std::to_string(k) + ": only " + std::to_string(m) +
+                  " jumps could be set up, fewer than the minibatches");
+    }
+    PpoBatch batch;
+    batch.observations.resize(observation_size_, m);
+    batch.actions.resize(action_size_, m);
+    batch.rewards.resize(m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const size_t i = static_cast<size_t>(used[static_cast<size_t>(j)]);
+      batch.observations.col(j) =
+          Eigen::Map<const Eigen::VectorXd>(observations[i].data(), static_cast<Eigen::Index>(observations[i].size()));
+      batch.actions.col(j) = draws[i].residual;
+      batch.rewards[j] = rewards[static_cast<Eigen::Index>(i)];
+    }
+    batch.log_probs = learner_->logProbs(batch.observations, batch.actions);
+    row.reward_mean = batch.rewards.mean();
+    row.reward_std = m > 1 ? std::sqrt((batch.rewards.array() - row.reward_mean).square().sum() / (m - 1)) : 0.0;
+
+    const auto t1 = Clock::now();
+    if (spec_.critic_warmup && learner_->iteration() == 0) {
+      row.critic_warmup_loss = learner_->fitCritic(batch.observations, batch.rewards, spec_.critic_warmup_epochs);
+    }
+    const PpoUpdateStats s = learner_->update(batch);
+    row.update_s = secondsSince(t1);
+    row.policy_loss = s.policy_loss;
+    row.value_loss = s.value_loss;
+    row.entropy = s.entropy;
+    row.kl = s.kl;
+    row.clip_fraction = s.clip_fraction;
+    row.learning_rate = s.learning_rate;
+    row.std_mean = s.std_mean;
+    row.value_mean = s.value_mean;
+    row.actor_gradient_norm = s.actor_gradient_norm;
+    row.critic_gradient_norm = s.critic_gradient_norm;
+    done_ = k;
+    jumps_ += n;
+    row.jumps = jumps_;
+
+    if (spec_.validation_count > 0 && (k % spec_.validate_every == 0 || k == spec_.iterations)) {
+      const auto t2 = Clock::now();
+      row.validated = validate(row.validation);
+      row.validation_s = secondsSince(t2);
+      if (!row.validated) row.validation = JumpSetFigures{};
+    }
+    iteration_walls_.push_back(row.rollout_s + row.update_s + row.validation_s);
+    finishRow(row);
+    return true;
+  }
+
+  void finishRow(TrainingIteration& row) {
+    row.wall_s = wall_before_ + secondsSince(start_);
+    double mean_wall = 0;
+    for (double w : iteration_walls_) mean_wall += w / iteration_walls_.size();
+    row.eta_s = iteration_walls_.empty() ? kNaN : mean_wall * (spec_.iterations - row.iteration);
+    if (row.validated) last_validation_ = row;
+    log_.push_back(training_files::logValues(row));
+    training_files::writeLog(paths_.log, log_);
+    if (on_row_) on_row_(row);
+  }
+
+  void save() {
+    writePolicyFile();
+    json c;
+    c["format"] = training_files::kCheckpointFormat;
+    c["version"] = training_files::kCheckpointVersion;
+    c["scenario"] = scenario_.file;
+    c["environment"] = factory_name_;
+    c["settings"] = settingsJson(spec_);
+    c["iteration"] = done_;
+    c["jumps"] = jumps_;
+    c["wall_s"] = wall_before_ + secondsSince(start_);
+    c["target_rng"] = training_files::rngJson(target_rng_);
+    c["noise_rng"] = training_files::rngJson(noise_rng_);
+    c["log_columns"] = training_files::logColumns();
+    c["log"] = log_;
+    c["ppo"] = learner_->checkpoint();
+    training_files::writeJson(paths_.checkpoint, c, "training checkpoint");
+  }
+
+  void resume(const std::string& path) {
+    const json c = training_files::readJson(path, "training checkpoint");
+    const training_files::JsonReader read(path);
+    if (read.string(c, "format") != training_files::kCheckpointFormat) {
+      read.fail("format", "not a pronk training checkpoint (\"" + std::string(training_files::kCheckpointFormat) + "\")");
+    }
+    if (read.integer(c, "version") != training_files::kCheckpointVersion) {
+      read.fail("version", "this pronk reads version " + std::to_string(training_files::kCheckpointVersion));
+    }
+    if (read.string(c, "environment") != factory_name_) {
+      read.fail("environment", "the checkpoint trains environment '" + read.string(c, "environment") +
+                                   "'; this scenario's is '" + factory_name_ + "'");
+    }
+    const json& settings = read.at(c, "settings");
+    const json wanted = settingsJson(spec_);
+    for (const auto& item : wanted.items()) {
+      if (!settings.contains(item.key()) || settings[item.key()] != item.value()) {
+        read.fail("settings." + item.key(),
+                  (settings.contains(item.key()) ? settings[item.key()].dump() : std::string("missing")) +
+                      ", but this run has " + item.value().dump() +
+                      " (the training file, --jumps and --seed must be those the checkpoint was made with)");
+      }
+    }
+    done_ = static_cast<int>(read.integer(c, "iteration"));
+    if (done_ > spec_.iterations) {
+      read.fail("iteration", std::to_string(done_) + " iterations are done already; this run has " +
+                                 std::to_string(spec_.iterations) + " (give --iterations N for more)");
+    }
+    jumps_ = read.integer(c, "jumps");
+    wall_before_ = read.number(c, "wall_s");
+    target_rng_.setState(read.rng(c, "target_rng"));
+    noise_rng_.setState(read.rng(c, "noise_rng"));
+    if (read.at(c, "log_columns") != training_files::logColumns()) {
+      read.fail("log_columns", "another pronk's log columns");
+    }
+    log_ = read.at(c, "log").get<std::vector<std::vector<json>>>();
+    last_validation_ = training_files::lastValidation(log_);
+    try {
+      learner_ = std::make_unique<PpoLearner>(PpoLearner::fromCheckpoint(read.at(c, "ppo")));
+    } catch (const InputError&) {
+      throw;
+    } catch (const Error& e) {
+      throw InputError({path, 0}, std::string("ppo: ") + e.what());
+    }
+    if (learner_->observationSize() != observation_size_ || learner_->actionSize() != action_size_) {
+      read.fail("ppo", "the networks' sizes do not fit environment '" + factory_name_ + "'");
+    }
+  }
+
+  void writePolicyFile() const {
+    MlpPolicy policy = learner_->policy();
+    if (spec_.residual) policy.setPrior(PolicyPrior{kPriorActionKind, factory_name_});
+    policy.setDescription(scenario_.name + ": " +
+                          (spec_.residual ? "a residual over environment '" + factory_name_ + "''s prior_action"
+                                          : "a policy for environment '" + factory_name_ + "'") +
+                          ", trained by pronk train");
+    json p;
+    p["command"] = options_.command;
+    p["training_file"] = scenario_.file;
+    p["seed"] = spec_.seed;
+    p["iterations"] = done_;
+    p["jumps"] = jumps_;
+    p["wall_time_s"] = wall_before_ + secondsSince(start_);
+    p["robot"] = scenario_.platform.name;
+    p["urdf"] = fs::path(scenario_.platform.urdf).filename().string();
+    p["environment"] = factory_name_;
+    p["plugin"] = fs::path(origin_).filename().string();
+    p["guidance"] = {{"residual", spec_.residual}, {"critic_warmup", spec_.critic_warmup}, {"mirror", spec_.mirror}};
+    if (last_validation_) {
+      const JumpSetFigures& v = last_validation_->validation;
+      p["validation"] = {{"iteration", last_validation_->iteration},
+                         {"count", spec_.validation_count},
+                         {"seed", spec_.validation_seed},
+                         {"landed", v.landed},
+                         {"failed", v.failed},
+                         {"rejected", v.rejected},
+                         {"error_median_m", std::isfinite(v.error_median) ? json(v.error_median) : json()},
+                         {"error_mean_m", std::isfinite(v.error_mean) ? json(v.error_mean) : json()},
+                         {"within_0.2m", std::isfinite(v.within_02) ? json(v.within_02) : json()}};
+    }
+    policy.setProvenance(p);
+    savePolicy(policy, paths_.policy);
+  }
+
+  TrainingOutcome finish(TrainingOutcome& out, bool interrupted) {
+    save();
+    out.iterations_done = done_;
+    out.interrupted = interrupted;
+    out.jumps = jumps_;
+    out.wall_s = wall_before_ + secondsSince(start_);
+    return out;
+  }
+
+  const Scenario& scenario_;
+  TrainingRunOptions options_;
+  TrainingProgress on_row_;
+  const std::atomic<bool>* stop_;
+  TrainingSpec spec_;
+  TargetSampler sampler_;
+  Rng target_rng_, noise_rng_;
+  std::vector<EpisodeCase> validation_;
+  std::string factory_name_, origin_;
+  int observation_size_ = 0, action_size_ = 0;
+  std::shared_ptr<PolicyState> state_;
+  std::unique_ptr<PpoLearner> learner_;
+  std::unique_ptr<RolloutPool> pool_;
+  Paths paths_;
+  int done_ = 0;            // iterations whose update is done
+  long long jumps_ = 0;     // training jumps in them
+  double wall_before_ = 0;  // wall time of the runs this one resumes
+  Clock::time_point start_ = Clock::now();
+  std::vector<double> iteration_walls_;
+  std::vector<std::vector<json>> log_;
+  std::optional<TrainingIteration> last_validation_;
+};
+
+}  // namespace
+
+std::string checkpointPathFor(const std::string& policy_path) {
+  const fs::path p(policy_path);
+  return (p.parent_path() / (p.stem().string() + ".checkpoint.json")).string();
+}
+
+TrainingOutcome trainPolicy(const Scenario& scenario, const PluginRegistry& registry, const TrainingRunOptions& options,
+                            const TrainingProgress& on_row, const std::atomic<bool>* stop) {
+  if (options.policy_path.empty()) throw Error("training: no policy file to write (--out)");
+  const fs::path dir = fs::path(options.policy_path).parent_path();
+  if (!dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw Error("--out " + options.policy_path + ": cannot create " + dir.string() + ": " + ec.message());
+  }
+  Trainer trainer(scenario, registry, options, on_row, stop);
+  return trainer.run();
+}
+
+}  // namespace pronk

@@ -1,0 +1,209 @@
+// `pronk train` and residual policies through the command a user runs: a
+// residual with a zero head jumps exactly as the planner; a 2-iteration run
+// writes a policy that `pronk run` takes; a resumed run equals an
+// uninterrupted one; the result does not depend on --jobs; bad files give
+// file:line errors.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Outcome {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+Outcome pronk(const std::string& args) {
+  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
+  Outcome out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
+std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
+std::string here(const std::string& relative) { return std::string(PRONK_TRAINING_TEST_DIR) + "/" + relative; }
+const std::string kTinyTraining = here("scenarios/go1_tiny_train.xml");
+
+std::string outDir(const std::string& name) {
+  const std::string dir = std::string(PRONK_TRAINING_OUT_DIR) + "/" + name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+json readJson(const std::string& path) {
+  std::ifstream in(path);
+  json j;
+  if (in) in >> j;
+  return j;
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Every value but those under the keys named (at any depth).
+json without(json j, const std::vector<std::string>& keys) {
+  if (j.is_object()) {
+    for (const std::string& k : keys) j.erase(k);
+    for (auto& item : j.items()) item.value() = without(item.value(), keys);
+  } else if (j.is_array()) {
+    for (auto& v : j) v = without(v, keys);
+  }
+  return j;
+}
+
+// A policy file without what differs between equal runs (command, wall time).
+json policyContent(const std::string& path) {
+  json p = readJson(path);
+  EXPECT_TRUE(p.is_object()) << path;
+  p.erase("provenance");
+  return p;
+}
+
+TEST(ResidualPolicy, WithAZeroHeadJumpsExactlyAsThePlanner) {
+  const std::string planner = outDir("residual_planner"), residual = outDir("residual_zero");
+  const std::string scenario = source("scenarios/go1/mixed.xml");
+  const Outcome a = pronk("run " + scenario + " --policy ballistic --jobs 2 --out " + planner);
+  const Outcome b = pronk("run " + scenario + " --policy " + here("policies/zero_residual.json") + " --jobs 2 --out " +
+                          residual);
+  ASSERT_TRUE(a.status == 0 || a.status == 4) << a.output;
+  EXPECT_EQ(b.status, a.status) << b.output;
+  const json ja = readJson(planner + "/results.json"), jb = readJson(residual + "/results.json");
+  ASSERT_TRUE(ja.is_array() && ja.size() == 7u) << a.output;
+  // Every number of every jump (actions, landings, metrics, rewards, events) but the wall times.
+  EXPECT_EQ(without(ja, {"wall_s"}), without(jb, {"wall_s"}));
+  EXPECT_NE(ja[0]["action"], json()) << "the results name the action";
+}
+
+TEST(ResidualPolicy, OverAnotherEnvironmentIsAnErrorNamingTheFile) {
+  const std::string file = here("policies/residual_of_another_environment.json");
+  const Outcome r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + file);
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find(file + ": a residual over environment 'walk''s prior_action; this scenario's environment "
+                                 "is 'jump'"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(PronkTrain, TwoIterationsWriteAPolicyThatPronkRunTakes) {
+  const std::string dir = outDir("train_smoke");
+  const Outcome t = pronk("train " + kTinyTraining + " --out " + dir + "/policy.json --jobs 2");
+  ASSERT_EQ(t.status, 0) << t.output;
+  EXPECT_NE(t.output.find("iter    2/2  jumps      16  reward "), std::string::npos) << t.output;
+  EXPECT_NE(t.output.find("trained 2 iteration(s), 16 jumps"), std::string::npos) << t.output;
+
+  const json policy = readJson(dir + "/policy.json");
+  EXPECT_EQ(policy["version"], 2);
+  EXPECT_EQ(policy["prior"], json({{"kind", "prior_action"}, {"environment", "jump"}}));
+  EXPECT_EQ(policy["layers"].size(), 3u);  // [32, 32] hidden
+  EXPECT_EQ(policy["layers"][0]["weights"].size(), 32u);
+  EXPECT_EQ(policy["provenance"]["jumps"], 16);
+  EXPECT_EQ(policy["provenance"]["iterations"], 2);
+  EXPECT_EQ(policy["provenance"]["seed"], 3);
+  EXPECT_EQ(policy["provenance"]["robot"], "go1");
+  EXPECT_EQ(policy["provenance"]["environment"], "jump");
+  EXPECT_EQ(policy["provenance"]["validation"]["iteration"], 2);
+  EXPECT_EQ(policy["provenance"]["validation"]["count"], 3);
+
+  // train_log.csv: the header and rows 0 (the start's validation), 1 and 2.
+  std::istringstream log(readText(dir + "/train_log.csv"));
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(log, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u) << readText(dir + "/train_log.csv");
+  EXPECT_EQ(lines[0].rfind("iteration,iterations,jumps,batch_jumps,", 0), 0u);
+  EXPECT_EQ(lines[1].rfind("0,2,0,", 0), 0u);
+  EXPECT_EQ(lines[3].rfind("2,2,16,8,", 0), 0u);
+  const json checkpoint = readJson(dir + "/policy.checkpoint.json");
+  EXPECT_EQ(checkpoint["format"], "pronk-train-checkpoint");
+  EXPECT_EQ(checkpoint["iteration"], 2);
+
+  const std::string run = outDir("train_smoke_run");
+  const Outcome r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + dir + "/policy.json --out " + run);
+  EXPECT_TRUE(r.status == 0 || r.status == 4) << r.output;  // a trained policy may miss; it must run
+  const json results = readJson(run + "/results.json");
+  ASSERT_TRUE(results.is_array() && results.size() == 1u) << r.output;
+}
+
+TEST(PronkTrain, ResumedRunEqualsAnUninterruptedOne) {
+  const std::string whole = outDir("train_whole"), split = outDir("train_split");
+  const Outcome a = pronk("train " + kTinyTraining + " --iterations 4 --jobs 2 --out " + whole + "/p.json");
+  ASSERT_EQ(a.status, 0) << a.output;
+  const Outcome b = pronk("train " + kTinyTraining + " --iterations 2 --jobs 2 --out " + split + "/p.json");
+  ASSERT_EQ(b.status, 0) << b.output;
+  const json halfway = policyContent(split + "/p.json");
+  const Outcome c = pronk("train " + kTinyTraining + " --iterations 4 --jobs 2 --out " + split + "/p.json --resume " +
+                          split + "/p.checkpoint.json");
+  ASSERT_EQ(c.status, 0) << c.output;
+  EXPECT_NE(c.output.find("iter    4/4  jumps      32"), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find("iter    2/"), std::string::npos) << "the resumed run redid an iteration\n" << c.output;
+  EXPECT_NE(halfway, policyContent(split + "/p.json"));  // it went on learning
+  EXPECT_EQ(policyContent(whole + "/p.json"), policyContent(split + "/p.json"));
+  // Everything a further resume needs, too: networks, Adam moments, std, streams.
+  const json ca = readJson(whole + "/p.checkpoint.json"), cb = readJson(split + "/p.checkpoint.json");
+  EXPECT_EQ(ca["ppo"], cb["ppo"]);
+  EXPECT_EQ(ca["target_rng"], cb["target_rng"]);
+  EXPECT_EQ(ca["noise_rng"], cb["noise_rng"]);
+  EXPECT_EQ(ca["jumps"], 32);
+  EXPECT_EQ(cb["jumps"], 32);
+}
+
+TEST(PronkTrain, DoesNotDependOnTheNumberOfJobs) {
+  const std::string one = outDir("train_jobs_1"), two = outDir("train_jobs_2");
+  const Outcome a = pronk("train " + kTinyTraining + " --jobs 1 --out " + one + "/p.json");
+  const Outcome b = pronk("train " + kTinyTraining + " --jobs 2 --out " + two + "/p.json");
+  ASSERT_EQ(a.status, 0) << a.output;
+  ASSERT_EQ(b.status, 0) << b.output;
+  EXPECT_EQ(policyContent(one + "/p.json"), policyContent(two + "/p.json"));
+  EXPECT_EQ(readJson(one + "/p.checkpoint.json")["ppo"], readJson(two + "/p.checkpoint.json")["ppo"]);
+  EXPECT_NE(readJson(one + "/p.json")["layers"].back()["bias"],
+            json(std::vector<double>(13, 0.0)))  // it learned something: the head is no longer zero
+      << "the residual's head is still zero";
+}
+
+TEST(PronkTrain, BadFilesAndOptionsAreErrorsThatSayWhere) {
+  const std::string dir = outDir("train_errors");
+  const std::string broken = source("tests/scenario/broken/training_yaw_range_reversed.xml");
+  Outcome r = pronk("train " + broken + " --out " + dir + "/p.json");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find(broken + ":6: <region>: yaw: max (-90) must be >= min (90)"), std::string::npos) << r.output;
+
+  r = pronk("train " + source("scenarios/go1/forward.xml") + " --out " + dir + "/p.json");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("no <training> element: nothing to train"), std::string::npos) << r.output;
+
+  r = pronk("train " + kTinyTraining + " --jumps 1 --out " + dir + "/p.json");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("--jumps 1: must be >= the <ppo> minibatches (2)"), std::string::npos) << r.output;
+
+  // A checkpoint continues only the run it was made by.
+  r = pronk("train " + kTinyTraining + " --iterations 1 --jobs 2 --out " + dir + "/p.json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = pronk("train " + kTinyTraining + " --iterations 2 --seed 4 --out " + dir + "/p.json --resume " + dir +
+            "/p.checkpoint.json");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find(dir + "/p.checkpoint.json: settings.seed: 3, but this run has 4"), std::string::npos)
+      << r.output;
+}
+
+}  // namespace
