@@ -225,7 +225,6 @@ TEST(Cli, NanEmptyAndHugeFlagValuesAreUsageErrors) {
       {"--speed inf --video x.mp4", "--speed: 'inf' is not a finite number"},
       {"--size ''", "--size: an empty value"},
       {"--out ''", "--out: an empty value"},
-      {"--video ''", "--video: an empty value"},
       {"--sweep ''", "--sweep: an empty value"},
   };
   for (const auto& [flags, message] : cases) {
@@ -233,6 +232,10 @@ TEST(Cli, NanEmptyAndHugeFlagValuesAreUsageErrors) {
     EXPECT_EQ(o.status, 2) << flags << "\n" << o.output;
     EXPECT_NE(o.output.find(message), std::string::npos) << flags << "\n" << o.output;
   }
+  // An empty --video is a bare --video, which needs --out for the scenario's name.
+  const Outcome video = pronk(run + "--video ''");
+  EXPECT_EQ(video.status, 3) << video.output;
+  EXPECT_NE(video.output.find("--video without a file name"), std::string::npos) << video.output;
 }
 
 TEST(Cli, AModelTooStiffToSimulateFailsOnItsStepBudget) {

@@ -174,7 +174,7 @@ TEST(ShippedScenarios, TerrainDemoExercisesTheFormat) {
   ASSERT_TRUE(s.render.has_value());
   EXPECT_EQ(s.render->camera.mode, "fixed");
   EXPECT_NEAR(s.render->camera.fovy_deg, 45, 1e-9);
-  EXPECT_EQ(s.render->output, (file.parent_path() / "../../out/go1_terrain_demo.mp4").lexically_normal().string());
+  EXPECT_EQ(s.render->output, "go1_terrain_demo.mp4");
 }
 
 TEST(Training, ShippedTrainingFilesCoverThePapersRegion) {
