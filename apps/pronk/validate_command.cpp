@@ -39,6 +39,14 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
         resolveParams(env, scenario.environment->params, scenario.environment->where);
         environment = std::string(", environment ") + env.name;
       }
+      // Every case a run would set up (a step platform needs room for its edge):
+      // what a run would refuse, validate refuses, at the target's or sweep's line.
+      std::vector<EpisodeCase> cases = targetCases(scenario);
+      for (const SweepSpec& sweep : scenario.sweeps) {
+        const std::vector<EpisodeCase> more = sweepCases(scenario, sweep.name);
+        cases.insert(cases.end(), more.begin(), more.end());
+      }
+      for (const EpisodeCase& c : cases) applyCase(scenario, c);
       std::printf("ok  %s (%s, %d joints, %d feet, %zu targets%s)\n", file.c_str(), world.robot().name.c_str(),
                   world.jointCount(), world.footCount(), scenario.targets.size(), environment.c_str());
     } catch (const Error& e) {

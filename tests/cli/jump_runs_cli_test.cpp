@@ -415,4 +415,20 @@ TEST(JumpRuns, DurationFlagSetsTheEpisodeLength) {
       << bad.output;
 }
 
+TEST(JumpRuns, ACaseThatCannotBeSetUpIsRefusedByValidateAndFailsAloneInARun) {
+  const std::string file = testScenario("go1_case_without_room.xml");
+  const CommandRun v = pronk("validate " + file);
+  EXPECT_EQ(v.status, 3) << v.output;
+  EXPECT_NE(v.output.find("go1_case_without_room.xml:9: target straight_up: target z = 0.2"), std::string::npos)
+      << v.output;
+  const std::string out = outDir("jump_case_without_room");
+  const CommandRun r = pronk("run " + file + " --policy ballistic --out " + out);
+  EXPECT_EQ(r.status, 4) << r.output;
+  const nlohmann::json j = results(out);
+  ASSERT_TRUE(j.is_array() && j.size() == 2u) << r.output;
+  EXPECT_EQ(j[0]["status"], "ok");
+  EXPECT_EQ(j[1]["status"], "failed");
+  EXPECT_EQ(j[1]["failure_reason"].get<std::string>().rfind("setup: ", 0), 0u) << j[1]["failure_reason"];
+}
+
 }  // namespace
