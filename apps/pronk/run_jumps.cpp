@@ -3,7 +3,9 @@
 // the table, write the results files and traces, and film the video.
 #include "run_jumps.h"
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +25,22 @@ namespace pronk::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::atomic<int> g_signal{0};
+std::atomic<bool> g_stop{false};  // the pool's stop flag: no case is handed out once set
+extern "C" void onSignal(int signal) {
+  g_signal = signal;  // lock-free atomics: safe in a handler
+  g_stop = true;
+}
+
+// The files a jump run writes into --out: a new run replaces them as one set.
+bool isRunFile(const fs::path& p) {
+  const std::string name = p.filename().string();
+  return name == "results.json" || name == "results.csv" ||
+         (name.rfind("jump-", 0) == 0 && p.extension() == ".csv");
+}
+
+constexpr double kResultsEvery = 10.0;  // s between rewrites of the results files during a run
 
 // The world-frame target marker, planned arc and predicted landing of a jump for the video.
 render::SceneMarkers jumpMarkers(const EpisodeRecord& r, const Landing& landing, const Terrain& terrain,
@@ -94,6 +112,10 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     std::error_code ec;
     fs::create_directories(options.out_dir, ec);
     if (ec) throw Error("--out " + options.out_dir + ": cannot create the directory: " + ec.message());
+    // An earlier run's results and traces go, so that none is left beside this run's.
+    for (const auto& entry : fs::directory_iterator(options.out_dir, ec)) {
+      if (entry.is_regular_file() && isRunFile(entry.path())) fs::remove(entry.path(), ec);
+    }
   }
   if (options.trace && options.out_dir.empty()) throw Error("--trace: needs --out DIR for the trace files");
 
@@ -102,6 +124,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   rollout.record_samples = options.trace || !video.path.empty();
   rollout.record_body_poses = !video.path.empty();
   if (options.full_episodes) rollout.end_at_rest = 0;
+  rollout.stop = &g_stop;
   const std::string factory_name = setup.factory->name, origin = setup.origin;
   const EnvironmentSchema schema = setup.schema;
   RolloutPool pool(std::move(setup), rollout);
@@ -120,6 +143,13 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   Progress progress("jump", cases.size());
   const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);
   const auto start = std::chrono::steady_clock::now();
+  auto last_write = start;
+  // SIGINT / SIGTERM: the running jumps finish, then the summary and the files
+  // of every finished jump are written (exit 130 / 143).
+  g_signal = 0;
+  g_stop = false;
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
   pool.run(cases, [&](EpisodeRecord& r) {
     const JumpOutcome outcome = judgeJump(r);
     printJumpRow(stdout, r, outcome, schema);
@@ -154,7 +184,20 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     }
     r.result.episode.trace.samples = {};  // keep memory bounded over long sweeps
     progress.done(stats.jumps);
+    // Finished jumps reach the results files as the run goes: a kill loses at
+    // most the last few seconds.
+    const auto now = std::chrono::steady_clock::now();
+    if (!options.out_dir.empty() && std::chrono::duration<double>(now - last_write).count() > kResultsEvery) {
+      files.write(options.out_dir);
+      last_write = now;
+    }
   });
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (g_signal) {
+    std::fprintf(stderr, "pronk: stopped by signal %d after %zu of %zu jump(s); writing what finished\n",
+                 g_signal.load(), stats.jumps, cases.size());
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printJumpSummary(stdout, stats, wall);
 
@@ -170,6 +213,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
                 v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
   }
+  if (g_signal) return 128 + g_signal;
   return stats.failed + stats.rejected + stats.missed > 0 ? kEpisodeFailed : kOk;
 }
 

@@ -431,4 +431,33 @@ TEST(JumpRuns, ACaseThatCannotBeSetUpIsRefusedByValidateAndFailsAloneInARun) {
   EXPECT_EQ(j[1]["failure_reason"].get<std::string>().rfind("setup: ", 0), 0u) << j[1]["failure_reason"];
 }
 
+TEST(JumpRuns, AnInterruptedSweepKeepsEveryFinishedJump) {
+  // SIGINT two seconds into the 40-target region sweep on one thread: the
+  // running jump finishes, the summary and the files of every finished jump
+  // are written, the exit status is 130; an earlier run's files are gone.
+  const std::string out = outDir("jump_interrupted");
+  std::filesystem::create_directories(out);
+  std::ofstream(out + "/jump-999.csv") << "stale\n";
+  const std::string command = "sh -c '" + std::string(PRONK_EXE) + " run " + source("scenarios/go1/region.xml") +
+                              " --policy ballistic --sweep region --jobs 1 --out " + out +
+                              " > " + out + "/log.txt 2>&1 & pid=$!; sleep 2; kill -INT $pid; wait $pid; echo $?'";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char text[64] = "";
+  ASSERT_NE(fgets(text, sizeof text, pipe), nullptr);
+  pclose(pipe);
+  EXPECT_EQ(std::atoi(text), 130) << text;
+  const nlohmann::json j = results(out);
+  ASSERT_TRUE(j.is_array()) << out;
+  EXPECT_GT(j.size(), 0u);
+  EXPECT_LT(j.size(), 40u);
+  for (size_t i = 0; i < j.size(); ++i) EXPECT_EQ(j[i]["case"], "region #" + std::to_string(i));
+  std::ifstream csv(out + "/results.csv");
+  size_t rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, j.size() + 1);  // the header and one row per finished jump
+  EXPECT_FALSE(std::filesystem::exists(out + "/jump-999.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/results.json.partial"));
+}
+
 }  // namespace

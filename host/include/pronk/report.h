@@ -53,8 +53,11 @@ class JumpResultsFiles {
   explicit JumpResultsFiles(EnvironmentSchema schema) : schema_(std::move(schema)) {}
   // `trace_file`: the jump's trace CSV beside the results ("" = none written).
   void add(const EpisodeRecord& record, const JumpOutcome& outcome, const std::string& trace_file);
-  // Writes DIR/results.json and DIR/results.csv. Throws Error when it cannot.
+  // Writes DIR/results.json and DIR/results.csv, each replaced as a whole
+  // (written beside, then renamed), so that a reader or a failed write never
+  // leaves half a file. Throws Error when it cannot.
   void write(const std::string& dir) const;
+  size_t size() const { return json_.size(); }
   const nlohmann::json& json() const { return json_; }
 
  private:

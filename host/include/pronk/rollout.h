@@ -52,6 +52,9 @@ struct RolloutOptions {
   // End an episode once the robot is at rest after landing, held this long (s;
   // EpisodeOptions::end_at_rest); 0 runs every episode to the environment's end.
   double end_at_rest = 0.2;
+  // When it becomes true (a signal handler's flag), no further case is handed
+  // out: the running episodes finish and run() returns what was delivered.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // One finished episode, as the sinks (report, learner, video) receive it.

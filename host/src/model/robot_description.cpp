@@ -2,7 +2,7 @@
 // shapes, resolve mesh URIs. Line numbers come from a tinyxml2 pass over the
 // same text, because urdfdom reports none.
 #include "pronk/robot_description.h"
-#include "pronk/input_file.h"
+#include "pronk/file_io.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <filesystem>
 
+#include "pronk/file_io.h"
 #include "pronk/report.h"
 
 namespace pronk {
@@ -234,18 +235,13 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
 
 void JumpResultsFiles::write(const std::string& dir) const {
   namespace fs = std::filesystem;
-  const std::string json_path = (fs::path(dir) / "results.json").string();
-  {
-    std::ofstream out(json_path);
-    if (!(out << json_.dump(2) << "\n")) throw Error(json_path + ": cannot write");
-  }
-  const std::string csv_path = (fs::path(dir) / "results.csv").string();
-  std::ofstream out(csv_path);
-  out << "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,error_yaw_deg,"
-         "status,reward,lift_off,touchdown,at_rest,";
-  for (const MetricSpec* spec : tableColumns(schema_)) out << spec->name << ',';
-  out << "ended_standing,reason\n" << csv_;
-  if (!out) throw Error(csv_path + ": cannot write");
+  replaceFileAtomically((fs::path(dir) / "results.json").string(), json_.dump(2) + "\n", "results file");
+  std::string csv =
+      "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,error_yaw_deg,"
+      "status,reward,lift_off,touchdown,at_rest,";
+  for (const MetricSpec* spec : tableColumns(schema_)) csv += spec->name + ',';
+  csv += "ended_standing,reason\n" + csv_;
+  replaceFileAtomically((fs::path(dir) / "results.csv").string(), csv, "results file");
 }
 
 double median(std::vector<double> v) {

@@ -79,7 +79,11 @@ size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const EpisodeSink
       size_t index;
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (stop_ || next_case >= cases.size()) return;
+        if (stop_ || (options_.stop && *options_.stop) || next_case >= cases.size()) {
+          if (next_case < cases.size()) stop_ = true;
+          ready.notify_all();  // the delivering thread may be waiting for a case nobody will run
+          return;
+        }
         index = next_case++;
       }
       try {

@@ -13,7 +13,7 @@
 #include "element_reader.h"
 #include "pronk/scenario.h"
 #include "sections.h"
-#include "pronk/input_file.h"
+#include "pronk/file_io.h"
 #include "urdf_root_mass.h"
 
 namespace pronk {

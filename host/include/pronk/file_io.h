@@ -1,7 +1,9 @@
-// Reading an input file (scenario, URDF, policy, checkpoint, trace) as a user
-// may give it: only a regular file, at most a bound in size, so that a FIFO
-// does not block forever and /dev/zero does not fill the memory. Header-only:
-// every reader module uses it, and it needs nothing but the standard library.
+// Files in and out, as every module needs them. In: an input file (scenario,
+// URDF, policy, checkpoint) as a user may give it: only a regular file, at most
+// a bound in size, so that a FIFO does not block forever and /dev/zero does
+// not fill the memory. Out: a file a reader never sees half of (written beside
+// it, then renamed over it), so that a full disk or a kill leaves the old file
+// or the new one. Header-only: nothing but the standard library.
 #pragma once
 
 #include <cerrno>
@@ -45,6 +47,28 @@ inline std::string readInputFile(const std::string& path, const std::string& wha
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// Writes `text` to PATH.partial and renames it over PATH. Throws Error "cannot
+// write the <what> PATH.partial: reason" or "cannot replace the <what> PATH: reason".
+inline void replaceFileAtomically(const std::string& path, const std::string& text, const std::string& what) {
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error("cannot write the " + what + " " + partial + ": " + std::strerror(errno));
+    out << text;
+    out.close();
+    if (!out) {
+      std::filesystem::remove(partial);
+      throw Error("cannot write the " + what + " " + partial + ": " + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::filesystem::remove(partial);
+    throw Error("cannot replace the " + what + " " + path + ": " + ec.message());
+  }
 }
 
 }  // namespace pronk
