@@ -214,7 +214,7 @@ Subcommand declareBench(CLI::App& app, const CommonOptions& common) {
   CLI::App* sub = app.add_subcommand("bench", "simulation speed and accuracy: default settings vs a converged reference");
   sub->add_option("--scenario", o->scenario, "scenario whose robot and settings to measure "
                                                       "(default: scenarios/go1/stand.xml)")
-      ->check(CLI::ExistingFile);
+      ->check(kNonEmpty);
   sub->add_option("--repeats", o->repeats, "timed runs per setting (median reported)")
       ->check(CLI::Range(1, 100));
   sub->add_flag("--sweep", o->sweep, "measure the whole table of integrators and steps");

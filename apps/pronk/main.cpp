@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "pronk/error.h"
+#include "pronk/plugin_abi.h"
 
 int main(int argc, char** argv) {
   using namespace pronk::cli;
@@ -10,7 +11,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 1 internal error, 2 usage error, 3 bad input (scenario, URDF, plugin),\n"
-      "4 an episode failed (non-foot contact, divergence, controller error).");
+      "4 an episode failed (non-foot contact, divergence, controller error), 130 / 143 stopped by SIGINT / SIGTERM.");
+  app.set_version_flag("--version", std::string("pronk ") + PRONK_VERSION + ", plugin ABI " +
+                                        std::to_string(PRONK_ABI_MAJOR) + "." + std::to_string(PRONK_ABI_MINOR) +
+                                        ", commit " + PRONK_GIT_COMMIT);
+  // Options of the main command (--plugin) may also follow the subcommand, as
+  // docs/plugin-abi.md shows them.
+  app.fallthrough();
   CommonOptions common;
   app.add_option("--plugin", common.plugin_paths,
                  "plugin library or directory, searched before PRONK_PLUGIN_PATH and the install directory "

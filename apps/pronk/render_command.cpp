@@ -64,7 +64,7 @@ Subcommand declareRender(CLI::App& app, const CommonOptions& common) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* sub = app.add_subcommand("render", "film a scenario's episode off-screen, from a recorded trace or by "
                                                   "simulating it");
-  sub->add_option("scenario", o->scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  sub->add_option("scenario", o->scenario, "scenario file")->required();
   sub->add_option("-o,--output", o->video, "MP4 file to write")->required()->check(kNonEmpty);
   sub->add_option("--trace", o->trace, "trace.csv of an earlier `pronk run --out` (no simulation)")
       ->check(CLI::ExistingFile);

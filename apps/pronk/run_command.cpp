@@ -134,7 +134,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
 Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand("run", "simulate a scenario and print what happened");
-  sub->add_option("scenario", o->scenario, "scenario file")->required()->check(CLI::ExistingFile);
+  sub->add_option("scenario", o->scenario, "scenario file")->required();
   sub->add_option("--out", o->out_dir, "directory for results.json and the trace CSV")->check(kNonEmpty);
   sub->add_option("--controller", o->controller, "controller to use instead of the scenario's (e.g. stand)")->check(kNonEmpty);
   sub->add_option("--duration", o->duration,

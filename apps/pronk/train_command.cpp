@@ -117,9 +117,7 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
 Subcommand declareTrain(CLI::App& app, const CommonOptions& common) {
   auto o = std::make_shared<TrainOptions>();
   CLI::App* sub = app.add_subcommand("train", "train a policy with PPO as a scenario's <training> element says");
-  sub->add_option("file", o->file, "training file: a scenario with <environment> and <training>")
-      ->required()
-      ->check(CLI::ExistingFile);
+  sub->add_option("file", o->file, "training file: a scenario with <environment> and <training>")->required();
   sub->add_option("--out", o->out, "the policy file to write; its checkpoint (STEM.checkpoint.json) and "
                                    "train_log.csv go beside it")
       ->required();

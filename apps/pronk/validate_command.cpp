@@ -62,7 +62,7 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
 Subcommand declareValidate(CLI::App& app, const CommonOptions& common) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* sub = app.add_subcommand("validate", "check scenario files (and their URDFs and controllers)");
-  sub->add_option("files", *files, "scenario files")->required()->check(CLI::ExistingFile);
+  sub->add_option("files", *files, "scenario files")->required();
   return {sub, [&common, files] { return validateCommand(common, *files); }};
 }
 

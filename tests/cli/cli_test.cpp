@@ -286,4 +286,21 @@ TEST(Cli, AScenarioNeverWritesAVideoByItselfNorOutsideOut) {
   EXPECT_NE(no_out.output.find("--video without a file name"), std::string::npos) << no_out.output;
 }
 
+TEST(Cli, VersionMissingScenarioAndPluginAfterTheSubcommand) {
+  const Outcome version = pronk("--version");
+  EXPECT_EQ(version.status, 0) << version.output;
+  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.3, commit "), std::string::npos)
+      << version.output;
+  // A missing scenario is bad input (exit 3) named by the loader, for every command that reads one.
+  for (const std::string command : {"run", "validate", "render -o x.mp4"}) {
+    const Outcome o = pronk(command + " /nonexistent/scene.xml");
+    EXPECT_EQ(o.status, 3) << command << "\n" << o.output;
+    EXPECT_NE(o.output.find("/nonexistent/scene.xml: scenario file not found"), std::string::npos) << o.output;
+  }
+  // --plugin after the subcommand, as docs/plugin-abi.md writes it.
+  const Outcome after = pronk("plugins --plugin /nonexistent/libnothing.so");
+  EXPECT_EQ(after.status, 3) << after.output;
+  EXPECT_NE(after.output.find("/nonexistent/libnothing.so"), std::string::npos) << after.output;
+}
+
 }  // namespace
