@@ -1,6 +1,8 @@
 // URDF reading: mass properties against sums over the file, lumping, limits,
 // mesh resolution and error cases.
 #include <gtest/gtest.h>
+#include <iterator>
+#include <tuple>
 
 #include <filesystem>
 #include <fstream>
@@ -163,4 +165,61 @@ TEST(RobotDescription, PackageUrisResolveThroughSearchPaths) {
 }
 
 }  // namespace
+TEST(RobotDescription, AKinematicLoopIsRefusedAtItsJointNotFollowedForever) {
+  // urdfdom accepts a link that is the child of two joints; the builder used to
+  // recurse until the stack overflowed.
+  const std::string urdf =
+    "<?xml version=\"1.0\"?>\n"
+    "<robot name=\"loop\">\n"
+    "  <link name=\"a\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial></link>\n"
+    "  <link name=\"b\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial></link>\n"
+    "  <link name=\"c\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial></link>\n"
+    "  <joint name=\"ab\" type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n"
+    "  <joint name=\"bc\" type=\"revolute\"><parent link=\"b\"/><child link=\"c\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n"
+    "  <joint name=\"cb\" type=\"revolute\"><parent link=\"c\"/><child link=\"b\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/></joint>\n"
+    "</robot>\n"
+    "";
+  try {
+    parseUrdf(urdf, "loop.urdf");
+    FAIL() << "a URDF with a loop was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("loop.urdf:8: link 'b' is the child of joints 'ab' and 'cb'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(RobotDescription, UnparseableAndUnphysicalNumbersAreRefusedWithTheirLine) {
+  // urdfdom silently dropped these (a trunk mass of "abc" gave a lighter robot
+  // that still jumped) or took them; each is now an error at its line.
+  std::ifstream in(std::string(PRONK_SOURCE_DIR) + "/tests/scenario/data/tiny_robot.urdf");
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NO_THROW(parseUrdf(good, "tiny.urdf"));
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"<mass value=\"5\"/>", "<mass value=\"abc\"/>", "<mass>: value=\"abc\" is not a finite number"},
+      {"<mass value=\"5\"/>", "<mass value=\"-1\"/>", "<mass>: value must be > 0"},
+      {"<mass value=\"5\"/>", "<mass value=\"0\"/>", "<mass>: value must be > 0"},
+      {"<mass value=\"5\"/>", "<mass value=\"1e308\"/>", "<mass>: value must be > 0 and at most 1e+06"},
+      {"ixx=\"0.01\"", "ixx=\"nan\"", "<inertia>: ixx=\"nan\" is not a finite number"},
+      {"ixx=\"0.01\" ixy=\"0\"", "ixx=\"0.01\" ixy=\"0.05\"", "<inertia>: the inertia is not positive definite"},
+      {"effort=\"10\"", "effort=\"0\"", "<limit>: effort must be > 0"},
+      {"velocity=\"10\"", "velocity=\"-1\"", "<limit>: velocity must be > 0"},
+      {"<sphere radius=\"0.02\"/>", "<sphere radius=\"0\"/>", "<sphere>: radius must be > 0"},
+      {"<origin xyz=\"0 0 -0.3\"/>", "<origin xyz=\"0 0 0x1p-2\"/>", "<origin>: xyz=\"0x1p-2\" is not a finite number"},
+  };
+  for (const auto& [from, to, message] : cases) {
+    std::string bad = good;
+    const size_t at = bad.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    bad.replace(at, from.size(), to);
+    try {
+      parseUrdf(bad, "tiny.urdf");
+      ADD_FAILURE() << to << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_GT(e.where().line, 0) << e.what();
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace pronk

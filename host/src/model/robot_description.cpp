@@ -16,6 +16,9 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <Eigen/Eigenvalues>
+#include <cerrno>
+#include <cstring>
 #include <mutex>
 #include <regex>
 #include <sstream>
@@ -69,6 +72,93 @@ LineIndex indexLines(const tinyxml2::XMLDocument& doc) {
     if (std::string(e->Name()) == "joint") index.joint_line[name] = e->GetLineNum();
   }
   return index;
+}
+
+std::string formatValue(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
+// The URDF's numbers checked before urdfdom reads them: urdfdom drops what it
+// cannot parse (a mass of "abc" became no mass at all) and takes unphysical
+// values. Every number must be finite; masses, limits and shape sizes
+// positive; an inertia positive definite. Errors name the line.
+void checkUrdfNumbers(const tinyxml2::XMLElement& robot, const std::string& origin) {
+  auto fail = [&](const tinyxml2::XMLElement& e, const std::string& what) {
+    throw InputError({origin, e.GetLineNum()}, "<" + std::string(e.Name()) + ">: " + what);
+  };
+  auto number = [&](const tinyxml2::XMLElement& e, const char* name, const char* text) {
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text, &end);
+    while (end && (*end == ' ' || *end == '\t')) ++end;
+    const bool hexadecimal = std::strpbrk(text, "xX") != nullptr;  // strtod reads them, URDF does not
+    if (end == text || (end && *end) || errno == ERANGE || !std::isfinite(v) || hexadecimal) {
+      fail(e, std::string(name) + "=\"" + text + "\" is not a finite number");
+    }
+    return v;
+  };
+  auto numbers = [&](const tinyxml2::XMLElement& e, const char* name) {
+    std::vector<double> out;
+    const char* text = e.Attribute(name);
+    if (!text) return out;
+    std::istringstream in(text);
+    for (std::string word; in >> word;) out.push_back(number(e, name, word.c_str()));
+    return out;
+  };
+  auto positive = [&](const tinyxml2::XMLElement& e, const char* name, double bound) {
+    for (double v : numbers(e, name)) {
+      if (!(v > 0) || v > bound) {
+        fail(e, std::string(name) + " must be > 0 and at most " + formatValue(bound) + " (got " + formatValue(v) + ")");
+      }
+    }
+  };
+  // Every element of the robot, depth first (links, joints and what they hold).
+  std::vector<const tinyxml2::XMLElement*> stack = {&robot};
+  while (!stack.empty()) {
+    const tinyxml2::XMLElement& e = *stack.back();
+    stack.pop_back();
+    for (const tinyxml2::XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
+    const std::string tag = e.Name();
+    if (tag == "mass") positive(e, "value", 1e6);
+    if (tag == "sphere") positive(e, "radius", 1e3);
+    if (tag == "cylinder") {
+      positive(e, "radius", 1e3);
+      positive(e, "length", 1e3);
+    }
+    if (tag == "box") positive(e, "size", 1e3);
+    if (tag == "origin") {
+      numbers(e, "xyz");
+      numbers(e, "rpy");
+    }
+    if (tag == "axis") numbers(e, "xyz");
+    if (tag == "limit") {
+      numbers(e, "lower");
+      numbers(e, "upper");
+      if (e.Attribute("effort")) positive(e, "effort", 1e6);
+      if (e.Attribute("velocity")) positive(e, "velocity", 1e6);
+    }
+    if (tag == "dynamics") {
+      numbers(e, "damping");
+      numbers(e, "friction");
+    }
+    if (tag == "inertia") {
+      double v[6];
+      const char* names[6] = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+      for (int i = 0; i < 6; ++i) {
+        const char* text = e.Attribute(names[i]);
+        v[i] = text ? number(e, names[i], text) : 0.0;
+      }
+      Eigen::Matrix3d I;
+      I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+      const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
+      if (!(eig.minCoeff() > 0)) {
+        fail(e, "the inertia is not positive definite (principal moments " + formatValue(eig(0)) + ", " +
+                    formatValue(eig(1)) + ", " + formatValue(eig(2)) + " kg m^2)");
+      }
+    }
+  }
 }
 
 // Mass properties of `add`, whose frame sits at `pose` in the body, merged into `into`.
@@ -423,6 +513,23 @@ RobotDescription parseUrdf(const std::string& xml, const std::string& origin, co
   }
   if (!doc.FirstChildElement("robot")) throw InputError({origin, 1}, "the root element is not <robot>");
   const LineIndex lines = indexLines(doc);
+  checkUrdfNumbers(*doc.FirstChildElement("robot"), origin);
+  // A URDF is a tree: a link that is the child of two joints closes a loop,
+  // which urdfdom accepts and the recursive build would follow forever.
+  std::map<std::string, std::string> parent_joint;  // child link -> the joint that has it
+  for (const tinyxml2::XMLElement* j = doc.FirstChildElement("robot")->FirstChildElement("joint"); j;
+       j = j->NextSiblingElement("joint")) {
+    const tinyxml2::XMLElement* child = j->FirstChildElement("child");
+    const char* link = child ? child->Attribute("link") : nullptr;
+    const char* name = j->Attribute("name");
+    if (!link) continue;  // urdfdom reports it
+    const auto [it, fresh] = parent_joint.emplace(link, name ? name : "");
+    if (!fresh) {
+      throw InputError({origin, j->GetLineNum()}, "link '" + std::string(link) + "' is the child of joints '" +
+                                                      it->second + "' and '" + (name ? name : "") +
+                                                      "': a URDF is a tree (kinematic loops are not supported)");
+    }
+  }
 
   urdf::ModelInterfaceSharedPtr model;
   CapturedConsole console;
