@@ -2,6 +2,7 @@
 // file per error in tests/learning/policies/, each refused with the file, the
 // line and the key it names.
 #include <gtest/gtest.h>
+#include <iterator>
 
 #include <algorithm>
 #include <cstring>
@@ -258,6 +259,26 @@ TEST(BrokenPolicyFolder, EveryFileIsListed) {
     EXPECT_TRUE(listed.count(name)) << name << " is not in kBroken";
   }
   EXPECT_EQ(listed.size(), kBroken.size());
+}
+
+TEST(PolicyFile, DeeplyNestedMetadataIsRefusedBeforeParsing) {
+  // 200,000 nested objects in the free-form provenance overflowed the stack
+  // (ASan saw it at 50,000); the nesting is refused at the level that goes too deep.
+  std::ifstream in(fixture("valid.json"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = text.find('{') + 1;
+  std::string deep = "\"provenance\": ";
+  for (int i = 0; i < 200000; ++i) deep += "{\"a\": ";
+  deep += "1";
+  for (int i = 0; i < 200000; ++i) deep += "}";
+  text.insert(at, deep + ",");
+  try {
+    pronk::parsePolicy(text, "deep.json");
+    FAIL() << "a 200,000-level document was read";
+  } catch (const pronk::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nested more than 64 levels deep"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).rfind("deep.json:", 0), 0u) << e.what();
+  }
 }
 
 }  // namespace

@@ -229,4 +229,19 @@ std::optional<std::size_t> findOverflowingNumber(const std::string& text) {
   return std::nullopt;
 }
 
+std::optional<std::size_t> findNestingBeyond(const std::string& text, int max_depth) {
+  int depth = 0;
+  for (std::size_t pos = 0; pos < text.size(); ++pos) {
+    const char c = text[pos];
+    if (c == '"') {
+      pos = stringEnd(text, pos) - 1;
+    } else if (c == '{' || c == '[') {
+      if (++depth > max_depth) return pos;
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace pronk::policy_file

@@ -56,4 +56,9 @@ std::optional<DuplicateKey> findDuplicateKey(const std::string& text);
 // without a position). Scans numbers outside strings.
 std::optional<std::size_t> findOverflowingNumber(const std::string& text);
 
+// Offset of the first '{' or '[' (outside strings) that opens a level deeper
+// than `max_depth`: nesting beyond it is refused before parsing, because the
+// copies and destructors of a parsed document recurse once per level.
+std::optional<std::size_t> findNestingBeyond(const std::string& text, int max_depth);
+
 }  // namespace pronk::policy_file

@@ -56,6 +56,7 @@ std::string joined(const std::vector<std::string>& names) {
 class PolicyReader {
  public:
   PolicyReader(const std::string& text, const std::string& name) : text_(text), name_(name) {}
+  static constexpr int kMaxNesting = 64;  // a policy's own structure is 4 deep; provenance is free-form
 
   MlpPolicy read() {
     const json doc = parse();
@@ -128,6 +129,10 @@ class PolicyReader {
   }
 
   json parse() const {
+    if (const auto deep = policy_file::findNestingBeyond(text_, kMaxNesting)) {
+      failAt(*deep, "column " + std::to_string(policy_file::positionOf(text_, *deep).column) +
+                        ": nested more than " + std::to_string(kMaxNesting) + " levels deep");
+    }
     try {
       return json::parse(text_);
     } catch (const json::parse_error& e) {

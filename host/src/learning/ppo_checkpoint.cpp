@@ -7,6 +7,7 @@
 #include <string>
 
 #include "file_replace.h"
+#include "json_text.h"
 #include "pronk/error.h"
 #include "pronk/ppo.h"
 
@@ -312,6 +313,11 @@ void savePpoCheckpoint(const PpoLearner& learner, const std::string& path) {
 
 PpoLearner loadPpoCheckpoint(const std::string& path) {
   const std::string text = learning_files::readFile(path, "checkpoint");
+  // A checkpoint is at most a few levels deep; deeper nesting is a damaged or
+  // hostile file, refused before the recursive parse and copies.
+  if (const auto deep = policy_file::findNestingBeyond(text, 64)) {
+    throw InputError({path, policy_file::positionOf(text, *deep).line}, "nested more than 64 levels deep");
+  }
   json doc;
   try {
     doc = json::parse(text);
