@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "pronk/controller.h"
 #include "pronk/controller_factory.h"
 #include "pronk/world.h"
 
@@ -36,7 +37,24 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
       std::string environment;
       if (scenario.environment) {
         const pronk_factory& env = findEnvironment(*scenario.environment, registry);
-        resolveParams(env, scenario.environment->params, scenario.environment->where);
+        const ResolvedParams params = resolveParams(env, scenario.environment->params, scenario.environment->where);
+        // What only the environment can judge (a motor model's name, action
+        // ranges, planner settings): create an instance on this robot, as a run
+        // would, and report its refusal at the parameter's line.
+        try {
+          checkFactoryFitsWorld(env, PRONK_FACTORY_ENVIRONMENT, registry.libraryOf(&env)->path(), world);
+          const HostApi host(world, nullptr);
+          EnvironmentInstance instance(env, registry.libraryOf(&env)->path(), *host.api(), params);
+        } catch (const InputError&) {
+          throw;
+        } catch (const Error& e) {
+          const std::string message = e.what();
+          SourceLocation where = scenario.environment->where;
+          for (const ParamSetting& p : scenario.environment->params) {
+            if (message.find("'" + p.name + "'") != std::string::npos) where = p.where;
+          }
+          throw InputError(where, message);
+        }
         environment = std::string(", environment ") + env.name;
       }
       // Every case a run would set up (a step platform needs room for its edge):

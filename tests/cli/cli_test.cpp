@@ -303,4 +303,29 @@ TEST(Cli, VersionMissingScenarioAndPluginAfterTheSubcommand) {
   EXPECT_NE(after.output.find("/nonexistent/libnothing.so"), std::string::npos) << after.output;
 }
 
+TEST(Cli, ValidateRefusesWhatARunWouldWithTheParameterLine) {
+  // A motor model's name is the environment's to judge: validate creates the
+  // environment on the robot, as a run would, and names the <param>'s line.
+  // Hexadecimal numbers, which strtod reads, are refused like attributes.
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/validate_params";
+  std::filesystem::create_directories(dir);
+  auto scenario = [&](const std::string& name, const std::string& value) {
+    const std::string file = dir + "/" + name + ".xml";
+    std::ofstream(file) << "<scenario version=\"1\" name=\"p\" angle=\"rad\">\n"
+                        << "  <include file=\"" << source("scenarios/platforms/go1.xml") << "\"/>\n"
+                        << "  <environment name=\"jump\" plugin=\"pronk_guided_jump\">\n"
+                        << "    <param name=\"" << name << "\" value=\"" << value << "\"/>\n"
+                        << "  </environment>\n  <sim/>\n</scenario>\n";
+    return file;
+  };
+  const Outcome motor = pronk("validate " + scenario("motor", "bogus"));
+  EXPECT_EQ(motor.status, 3) << motor.output;
+  EXPECT_NE(motor.output.find("motor.xml:4: "), std::string::npos) << motor.output;
+  EXPECT_NE(motor.output.find("'bogus' is neither dc nor effort"), std::string::npos) << motor.output;
+  const Outcome hex = pronk("validate " + scenario("duration", "0x1.8p0"));
+  EXPECT_EQ(hex.status, 3) << hex.output;
+  EXPECT_NE(hex.output.find("duration.xml:4: "), std::string::npos) << hex.output;
+  EXPECT_EQ(pronk("validate " + scenario("duration", "1.5")).status, 0);
+}
+
 }  // namespace

@@ -1,6 +1,7 @@
 // A factory's declared parameters checked against what a scenario sets: names,
 // types, ranges and vector lengths, with defaults filled in.
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <deque>
@@ -78,13 +79,16 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b);
 }
 
-// The whole of `text` as a finite number.
+// The whole of `text` as a finite decimal number, the scenario attributes' rule
+// (std::from_chars, general format: strtod would also take hex, "0x1.8p0").
 bool parseReal(const std::string& text, double* out) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) return false;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (begin < end && *begin == '+') ++begin;  // from_chars takes no '+'
+  if (begin == end) return false;
+  double v = 0;
+  const auto [stop, error] = std::from_chars(begin, end, v, std::chars_format::general);
+  if (error != std::errc() || stop != end || !std::isfinite(v)) return false;
   *out = v;
   return true;
 }
