@@ -177,31 +177,20 @@ int benchCommand(const CommonOptions& common, const BenchOptions& options) {
     std::printf("\nSweep, jump with landing, %.1f s:\n\n", jump_duration);
     printHeader();
     std::vector<SimSpec> sweep;
-    for (double h : {1e-4, 2e-4, 5e-4, 1e-3}) {
-      SimSpec s = defaults;
-      s.integrator = "semi_explicit_euler";
-      s.step = h;
-      sweep.push_back(s);
-    }
-    for (double h : {2e-4, 5e-4, 1e-3}) {
-      SimSpec s = defaults;
-      s.integrator = "semi_explicit_euler";
-      s.step = h;
-      s.contact.implicit = true;
-      sweep.push_back(s);
-    }
-    for (double acc : {1e-2, 3e-3, 1e-3, 1e-4}) {
-      SimSpec s = defaults;
-      s.integrator = "semi_explicit_euler2";
-      s.accuracy = acc;
-      sweep.push_back(s);
-    }
-    for (double acc : {1e-3, 1e-5, 1e-6}) {
-      SimSpec s = defaults;
-      s.integrator = "runge_kutta_merson";
-      s.accuracy = acc;
-      sweep.push_back(s);
-    }
+    // One row per integrator and step (fixed steps) or accuracy (error-controlled).
+    auto add = [&](const char* integrator, std::initializer_list<double> settings, bool implicit_contact) {
+      for (double v : settings) {
+        SimSpec s = defaults;
+        s.integrator = integrator;
+        (s.integrator == "semi_explicit_euler" ? s.step : s.accuracy) = v;
+        s.contact.implicit = implicit_contact;
+        sweep.push_back(s);
+      }
+    };
+    add("semi_explicit_euler", {1e-4, 2e-4, 5e-4, 1e-3}, false);
+    add("semi_explicit_euler", {2e-4, 5e-4, 1e-3}, true);
+    add("semi_explicit_euler2", {1e-2, 3e-3, 1e-3, 1e-4}, false);
+    add("runge_kutta_merson", {1e-3, 1e-5, 1e-6}, false);
     for (const SimSpec& s : sweep) {
       printRow(measure(scenario, s, "scripted_jump", jump_duration, options.repeats, describe(s)), &jump_reference);
     }

@@ -14,29 +14,16 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "pronk_command.h"  // tests/cli: running pronk as a user does
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Outcome {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-Outcome pronk(const std::string& args) {
-  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
-  Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
-std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
+using pronk_test::Outcome;
+using pronk_test::pronk;
+using pronk_test::source;
 std::string here(const std::string& relative) { return std::string(PRONK_TRAINING_TEST_DIR) + "/" + relative; }
 const std::string kTinyTraining = here("scenarios/go1_tiny_train.xml");
 
