@@ -222,6 +222,50 @@ TEST(PpoLearner, CriticWarmUpFitsTheValueAndLeavesTheActorAlone) {
   EXPECT_EQ(learner.criticOptimizer().state().step, 30 * smallConfig().minibatches);
 }
 
+// Hindsight and behaviour cloning: fitMean regresses the mean onto given
+// actions (here the bandit's optimum, a known linear map) and touches nothing else.
+TEST(PpoLearner, FitMeanRegressesTheMeanOntoGivenActionsAndLeavesTheRestAlone) {
+  PpoConfig c = smallConfig();
+  c.actor_init.zero_last_layer = true;
+  PpoLearner learner(c, 2, 2, 6);
+  pronk::Rng env(4);
+  const Bandit bandit;
+  const Eigen::MatrixXd o = Bandit::observations(512, env);
+  const Eigen::MatrixXd held_out = Bandit::observations(200, env);
+  const double before = rmsError(learner, bandit, held_out);
+  const Eigen::VectorXd log_std = learner.actor().logStd();
+  const Eigen::VectorXd critic = learner.critic().parameters();
+  const double rate = learner.learningRate();
+  const double loss = learner.fitMean(o, bandit.optimum(o), 60, 64, 3e-3);
+  EXPECT_LT(rmsError(learner, bandit, held_out), 0.05 * before) << "before " << before;
+  EXPECT_LT(loss, 1e-2);
+  EXPECT_EQ(learner.actor().logStd(), log_std);
+  EXPECT_EQ(learner.critic().parameters(), critic);
+  EXPECT_EQ(learner.learningRate(), rate);
+  EXPECT_EQ(learner.iteration(), 0);
+  EXPECT_EQ(learner.meanFitOptimizer().state().step, 60 * 8);
+  EXPECT_EQ(learner.actorOptimizer().state().step, 0) << "PPO's own Adam is not stepped";
+  // Its Adam travels with the checkpoint.
+  const PpoLearner back = PpoLearner::fromCheckpoint(learner.checkpoint());
+  EXPECT_EQ(back.meanFitOptimizer().state().first_moment, learner.meanFitOptimizer().state().first_moment);
+  EXPECT_EQ(back.meanFitOptimizer().state().step, learner.meanFitOptimizer().state().step);
+  EXPECT_THROW(learner.fitMean(o, bandit.optimum(o).topRows(1), 1, 64, 1e-3), pronk::Error);
+}
+
+TEST(PpoLearner, WithoutActorUpdatesPpoStepsTheCriticOnly) {
+  PpoConfig c = smallConfig();
+  c.update_actor = false;
+  PpoLearner learner(c, 2, 2, 7);
+  pronk::Rng env(5);
+  const Bandit bandit;
+  const Eigen::VectorXd actor = learner.actor().parameters();
+  const Eigen::VectorXd critic = learner.critic().parameters();
+  iterate(learner, bandit, env, 128);
+  EXPECT_EQ(learner.actor().parameters(), actor);
+  EXPECT_NE(learner.critic().parameters(), critic);
+  EXPECT_FALSE(PpoLearner::fromCheckpoint(learner.checkpoint()).config().update_actor);
+}
+
 TEST(AdaptiveLearningRate, FollowsRslRlsRule) {
   const PpoConfig c;  // desired KL 0.01, bounds 1e-5 .. 1e-2
   EXPECT_DOUBLE_EQ(pronk::adaptLearningRate(1e-3, 0.03, c), 1e-3 / 1.5);   // kl > 2 target

@@ -47,6 +47,9 @@ struct PpoConfig {
   int epochs = 10;
   int minibatches = 4;
   bool normalize_advantages = true;  // (A - mean) / (std + 1e-8) over the batch
+  // false: update() steps the critic only; the actor (mean and log-std) is
+  // left to another learner (fitMean), its loss terms still reported.
+  bool update_actor = true;
 
   double learning_rate = 1e-3;  // the start, for both networks
   // rsl_rl's rule, per minibatch: kl > 2 desired_kl -> lr / 1.5; 0 < kl <
@@ -129,6 +132,16 @@ class PpoLearner {
   // iteration() are left alone. Returns the mean value loss of the last epoch.
   double fitCritic(const Eigen::MatrixXd& observations, const Eigen::VectorXd& rewards, int epochs);
 
+  // Supervised fit of the actor's mean to given actions (hindsight
+  // relabelling, behaviour cloning): loss mean_j ||mean(s_j) - a_j||^2,
+  // `epochs` passes over minibatches of at most `minibatch_size` samples
+  // reshuffled from the learner's Rng, with its own Adam (meanFitOptimizer)
+  // at `learning_rate`, the gradient clipped to config.max_gradient_norm. The
+  // log-std, the critic, PPO's learning rate and iteration() are left alone.
+  // Returns the mean loss of the last epoch.
+  double fitMean(const Eigen::MatrixXd& observations, const Eigen::MatrixXd& actions, int epochs, int minibatch_size,
+                 double learning_rate);
+
   // The actor as a policy file holds it: layers, observation scaling as the
   // normalisation, log-std. Description and provenance are the caller's.
   MlpPolicy policy() const;
@@ -139,12 +152,13 @@ class PpoLearner {
   const Mlp& critic() const { return critic_; }
   const Adam& actorOptimizer() const { return actor_adam_; }
   const Adam& criticOptimizer() const { return critic_adam_; }
+  const Adam& meanFitOptimizer() const { return mean_fit_adam_; }
   double learningRate() const { return learning_rate_; }
   long long iteration() const { return iteration_; }  // updates done
   const Rng& rng() const { return rng_; }
 
   // Everything a resumed learner needs to continue bit for bit: config,
-  // scaling, both networks, log-std, both Adam states, learning rate,
+  // scaling, both networks, log-std, the three Adam states, learning rate,
   // iteration, Rng state (ppo_checkpoint.cpp; docs/training.md).
   nlohmann::json checkpoint() const;
   // Throws pronk::Error naming the key at fault.
@@ -166,6 +180,7 @@ class PpoLearner {
   GaussianPolicy actor_;
   Mlp critic_;
   Adam actor_adam_, critic_adam_;
+  Adam mean_fit_adam_;  // fitMean's: its steps are not PPO's
   double learning_rate_;
   long long iteration_ = 0;
   Rng rng_;

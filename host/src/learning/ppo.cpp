@@ -67,6 +67,7 @@ PpoLearner::PpoLearner(Parts parts)
       critic_(std::move(parts.critic)),
       actor_adam_(actor_.parameterCount(), config_.adam),
       critic_adam_(critic_.parameterCount(), config_.adam),
+      mean_fit_adam_(actor_.parameterCount(), config_.adam),
       learning_rate_(config_.learning_rate),
       rng_(parts.rng) {
   checkConfig(config_);
@@ -179,9 +180,11 @@ PpoUpdateStats PpoLearner::update(const PpoBatch& batch) {
       stats.actor_gradient_norm += clipGradientNorm(actor_gradient, config_.max_gradient_norm);
       stats.critic_gradient_norm += clipGradientNorm(critic_gradient, config_.max_gradient_norm);
 
-      Eigen::VectorXd actor_parameters = actor_.parameters();
-      actor_adam_.step(actor_parameters, actor_gradient, learning_rate_);
-      actor_.setParameters(actor_parameters);
+      if (config_.update_actor) {
+        Eigen::VectorXd actor_parameters = actor_.parameters();
+        actor_adam_.step(actor_parameters, actor_gradient, learning_rate_);
+        actor_.setParameters(actor_parameters);
+      }
       Eigen::VectorXd critic_parameters = critic_.parameters();
       critic_adam_.step(critic_parameters, critic_gradient, learning_rate_);
       critic_.setParameters(critic_parameters);
@@ -239,6 +242,45 @@ double PpoLearner::fitCritic(const Eigen::MatrixXd& observations, const Eigen::V
       Eigen::VectorXd parameters = critic_.parameters();
       critic_adam_.step(parameters, gradient, learning_rate_);
       critic_.setParameters(parameters);
+    }
+  }
+  return last_epoch_loss;
+}
+
+double PpoLearner::fitMean(const Eigen::MatrixXd& observations, const Eigen::MatrixXd& actions, int epochs,
+                           int minibatch_size, double learning_rate) {
+  const Eigen::Index n = observations.cols();
+  require(observations.rows() == observationSize() && actions.rows() == actionSize() && actions.cols() == n,
+          "fitMean: one observation column and one action column per sample expected");
+  require(n >= 1, "fitMean: no samples");
+  require(epochs >= 1 && minibatch_size >= 1, "fitMean: epochs and minibatch_size must be >= 1");
+  require(learning_rate > 0 && std::isfinite(learning_rate), "fitMean: learning_rate must be a finite number > 0");
+  checkFinite(observations, "observations");
+  checkFinite(actions, "actions");
+  const Eigen::MatrixXd inputs = scaling_.apply(observations);
+  const Eigen::Index batches = (n + minibatch_size - 1) / minibatch_size;
+  const Eigen::VectorXd no_log_std_gradient = Eigen::VectorXd::Zero(actionSize());
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  double last_epoch_loss = 0;
+  for (int epoch = 0; epoch < epochs; ++epoch) {
+    std::iota(order.begin(), order.end(), Eigen::Index{0});
+    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng_.below(i)]);
+    last_epoch_loss = 0;
+    for (Eigen::Index k = 0; k < batches; ++k) {
+      const std::size_t begin = static_cast<std::size_t>(n * k / batches);
+      const std::size_t end = static_cast<std::size_t>(n * (k + 1) / batches);
+      const std::vector<Eigen::Index> idx(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                                          order.begin() + static_cast<std::ptrdiff_t>(end));
+      Mlp::Tape tape;
+      const Eigen::MatrixXd m = actor_.means(columns(inputs, idx), &tape);
+      const Eigen::MatrixXd error = m - columns(actions, idx);
+      const double size = static_cast<double>(idx.size());
+      last_epoch_loss += error.colwise().squaredNorm().sum() / static_cast<double>(n);
+      Eigen::VectorXd gradient = actor_.backward(tape, (2.0 / size) * error, no_log_std_gradient);
+      clipGradientNorm(gradient, config_.max_gradient_norm);
+      Eigen::VectorXd parameters = actor_.parameters();
+      mean_fit_adam_.step(parameters, gradient, learning_rate);
+      actor_.setParameters(parameters);
     }
   }
   return last_epoch_loss;

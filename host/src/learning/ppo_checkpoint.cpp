@@ -48,6 +48,7 @@ json configJson(const PpoConfig& c) {
           {"epochs", c.epochs},
           {"minibatches", c.minibatches},
           {"normalize_advantages", c.normalize_advantages},
+          {"update_actor", c.update_actor},
           {"learning_rate", c.learning_rate},
           {"adaptive_learning_rate", c.adaptive_learning_rate},
           {"desired_kl", c.desired_kl},
@@ -182,6 +183,7 @@ class Reader {
     c.epochs = static_cast<int>(integer(v, p, "epochs"));
     c.minibatches = static_cast<int>(integer(v, p, "minibatches"));
     c.normalize_advantages = boolean(v, p, "normalize_advantages");
+    if (v.contains("update_actor")) c.update_actor = boolean(v, p, "update_actor");  // since hindsight
     c.learning_rate = number(v, p, "learning_rate");
     c.adaptive_learning_rate = boolean(v, p, "adaptive_learning_rate");
     c.desired_kl = number(v, p, "desired_kl");
@@ -272,6 +274,7 @@ nlohmann::json PpoLearner::checkpoint() const {
           {"critic", networkJson(critic_)},
           {"actor_adam", adamJson(actor_adam_)},
           {"critic_adam", adamJson(critic_adam_)},
+          {"mean_fit_adam", adamJson(mean_fit_adam_)},
           {"learning_rate", learning_rate_},
           {"iteration", iteration_},
           {"rng", rng}};
@@ -297,6 +300,8 @@ PpoLearner PpoLearner::fromCheckpoint(const nlohmann::json& checkpoint) {
     PpoLearner learner(std::move(parts));
     learner.actor_adam_.setState(r.adam(checkpoint, "actor_adam"));
     learner.critic_adam_.setState(r.adam(checkpoint, "critic_adam"));
+    // Written since fitMean; a checkpoint from before has a fresh one.
+    if (checkpoint.contains("mean_fit_adam")) learner.mean_fit_adam_.setState(r.adam(checkpoint, "mean_fit_adam"));
     learner.learning_rate_ = r.number(checkpoint, "", "learning_rate");
     learner.iteration_ = r.integer(checkpoint, "", "iteration");
     return learner;
