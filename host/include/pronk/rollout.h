@@ -29,6 +29,8 @@
 
 namespace pronk {
 
+class World;
+
 // What every episode of a run shares.
 struct RolloutSetup {
   Scenario scenario;                       // the base; each case applies on top (applyCase)
@@ -82,6 +84,13 @@ class RolloutPool {
   // after the running episodes and is rethrown. Returns the number of records
   // delivered (fewer than cases.size() only after stop()).
   size_t run(const std::vector<EpisodeCase>& cases, const EpisodeSink& sink);
+  // The environment's prior_action for each task, each from an environment
+  // reset with that task on the base scenario's start pose (its own World,
+  // built once; nothing is simulated), on the calling thread: what an
+  // exploring policy's env.priorAction gives for that task in a case that only
+  // moves the target. std::nullopt where the environment fails to give one.
+  std::vector<std::optional<std::vector<double>>> priorActions(const std::vector<std::vector<double>>& tasks);
+
   // Asks a running run() to hand out no more cases (safe from any thread).
   void stop() { stop_ = true; }
 
@@ -99,6 +108,7 @@ class RolloutPool {
   RolloutOptions options_;
   std::shared_ptr<const RobotDescription> robot_;
   std::vector<std::unique_ptr<Worker>> workers_;
+  std::unique_ptr<World> planning_world_;  // priorActions'
   std::atomic<bool> stop_{false};
   std::atomic<size_t> worlds_built_{0};
 };

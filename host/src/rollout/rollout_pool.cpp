@@ -6,6 +6,7 @@
 #include <mutex>
 #include <thread>
 
+#include "pronk/controller.h"
 #include "pronk/controller_factory.h"
 #include "pronk/rollout.h"
 #include "pronk/world.h"
@@ -140,6 +141,30 @@ size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const EpisodeSink
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
   return delivered;
+}
+
+std::vector<std::optional<std::vector<double>>> RolloutPool::priorActions(
+    const std::vector<std::vector<double>>& tasks) {
+  const Scenario& s = setup_.scenario;
+  if (!planning_world_) {
+    planning_world_ = std::make_unique<World>(*robot_, s.platform, s.sim, Terrain(s.ground, s.ground_height, s.terrain));
+  }
+  checkFactoryFitsWorld(*setup_.factory, PRONK_FACTORY_ENVIRONMENT, setup_.origin, *planning_world_);
+  Trace reported;  // the environment's log lines and metrics, unused
+  const HostApi host(*planning_world_, &reported);
+  EnvironmentInstance env(*setup_.factory, setup_.origin, *host.api(), setup_.params);
+  const AbiStateView view(planning_world_->state());
+  std::vector<std::optional<std::vector<double>>> out;
+  out.reserve(tasks.size());
+  for (size_t i = 0; i < tasks.size(); ++i) {
+    try {
+      const std::vector<double> observation = env.reset(tasks[i], i, *view.get());
+      out.push_back(env.priorAction(observation));
+    } catch (const Error&) {
+      out.push_back(std::nullopt);
+    }
+  }
+  return out;
 }
 
 RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& registry,
