@@ -58,6 +58,7 @@ struct EnvironmentSettings {
   double apex_clearance = 0.0;
   bool workspace_check = true;
   double max_speed_shortfall = 0.1;
+  double sideways_roll_gain = 0.0, sideways_roll_rate_gain = 0.0;
 };
 
 EnvironmentSettings readSettings(const ParamReader& read) {
@@ -82,6 +83,8 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   s.apex_clearance = read.real("apex_clearance");
   s.workspace_check = read.integer("workspace_check") != 0;
   s.max_speed_shortfall = read.real("max_speed_shortfall");
+  s.sideways_roll_gain = read.real("sideways_roll_gain");
+  s.sideways_roll_rate_gain = read.real("sideways_roll_rate_gain");
   return s;
 }
 
@@ -170,6 +173,8 @@ class JumpEnvironment {
     config.gravity = gravity_;
     config.start_com = Eigen::Vector3d(0, 0, standing_height_);
     config.standing_com_height = standing_height_;
+    config.sideways_roll_gain = settings_.sideways_roll_gain;
+    config.sideways_roll_rate_gain = settings_.sideways_roll_rate_gain;
     if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
     jump::JumpTarget target;
     target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);

@@ -114,6 +114,12 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         {kDeclSize, "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
          "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
          "torque check, under the 'motor' model)"},
+        {kDeclSize, "sideways_roll_gain", PRONK_PARAM_REAL, 0, -2.0, 2.0, 0, "0", "rad/(m/s)",
+         "planner: lift-off roll per m/s of lift-off velocity across the trunk (leans into the roll a sideways "
+         "push leaves the trunk with; 0: off)"},
+        {kDeclSize, "sideways_roll_rate_gain", PRONK_PARAM_REAL, 0, -10.0, 10.0, 0, "1.5", "1/m",
+         "planner: lift-off roll rate (rad/s) per m/s of lift-off velocity across the trunk, clamped into the "
+         "roll rate range (0: off, the planner before it)"},
     };
     d.insert(d.end(), own.begin(), own.end());
     return d;
