@@ -46,10 +46,11 @@ void printRow(const TrainingIteration& r) {
   if (r.iteration > 0) {
     std::printf("  reward %.3f  landed %d/%d (failed %d, rejected %d)", r.reward_mean, r.batch.landed, r.batch.jumps,
                 r.batch.failed, r.batch.rejected);
+    if (std::isfinite(r.hindsight_pairs)) std::printf("  pairs %.0f", r.hindsight_pairs);
   }
   if (r.validated) {
-    std::printf("  val median %.3f m, %.0f %% < 0.2 m, failed %d, rejected %d", r.validation.error_median,
-                100 * r.validation.within_02, r.validation.failed, r.validation.rejected);
+    std::printf("  val median %.3f m, mean %.3f m, %.0f %% < 0.2 m, failed %d, rejected %d", r.validation.error_median,
+                r.validation.error_mean, 100 * r.validation.within_02, r.validation.failed, r.validation.rejected);
   }
   if (r.iteration > 0) std::printf("  %.1f jumps/s  ETA %s", r.jumps_per_s, hms(r.eta_s).c_str());
   std::printf("\n");
@@ -87,8 +88,12 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
 
   const TrainingSpec& t = *scenario.training;
   std::printf("training    %s\n", o.file.c_str());
+  std::string guidance = t.aim ? "aim correction of its prior_action" : t.residual ? "residual over its prior_action"
+                                                                                  : "no prior";
+  if (t.hindsight) guidance += ", hindsight";
+  if (!t.ppo_actor) guidance += ", PPO fits the critic only";
   std::printf("environment %s, %s, %d iteration(s) x %d jumps, seed %lu, %d thread(s)%s\n", spec.factory.c_str(),
-              t.residual ? "residual over its prior_action" : "no prior", run.iterations.value_or(t.iterations),
+              guidance.c_str(), run.iterations.value_or(t.iterations),
               run.jumps_per_iteration.value_or(t.jumps_per_iteration), run.seed.value_or(t.seed), run.threads,
               o.resume.empty() ? "" : (", resuming " + o.resume).c_str());
   std::fflush(stdout);

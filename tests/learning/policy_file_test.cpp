@@ -145,6 +145,13 @@ TEST(PolicyFile, AResidualRecordsItsPriorInVersion2) {
   EXPECT_EQ(pronk::policyToJson(plain).find("\"prior\""), std::string::npos);
   EXPECT_NE(pronk::policyToJson(plain).find("\"version\": 1,"), std::string::npos);
   EXPECT_THROW(plain.setPrior(pronk::PolicyPrior{"prior_action", ""}), pronk::Error);
+  // An aim correction keeps its kind through a round trip; an unknown kind is refused.
+  MlpPolicy aim = policy;
+  aim.setPrior(pronk::PolicyPrior{pronk::kAimPriorKind, "jump"});
+  const MlpPolicy aim_again = pronk::parsePolicy(pronk::policyToJson(aim), "aim");
+  ASSERT_TRUE(aim_again.prior().has_value());
+  EXPECT_EQ(aim_again.prior()->kind, "prior_action_at_aim");
+  EXPECT_THROW(plain.setPrior(pronk::PolicyPrior{"ballistic", "jump"}), pronk::Error);
 }
 
 TEST(PolicyFile, OptionalPartsMayBeLeftOut) {
@@ -203,7 +210,8 @@ const std::vector<Broken> kBroken = {
     {"version_3.json", 3, "version: 3 is not supported; this pronk reads versions 1 and 2"},
     {"prior_in_version_1.json", 6, "prior: unknown key (known keys here: format, version, description, provenance, "
                                     "observation_size"},
-    {"unknown_prior_kind.json", 6, "prior.kind: string \"ballistic\" is not a known prior (known: \"prior_action\""},
+    {"unknown_prior_kind.json", 6, "prior.kind: string \"ballistic\" is not a known prior (known: \"prior_action\", a residual over the "
+                                  "environment's prior_action, and \"prior_action_at_aim\""},
     {"unknown_top_level_key.json", 4, "seed: unknown key"},
     {"duplicate_key.json", 22, "layers[0].activation: duplicate key (first written on line 14)"},
     {"observation_size_zero.json", 6, "observation_size: expected a positive integer, got number 0"},

@@ -26,6 +26,7 @@ using pronk_test::pronk;
 using pronk_test::source;
 std::string here(const std::string& relative) { return std::string(PRONK_TRAINING_TEST_DIR) + "/" + relative; }
 const std::string kTinyTraining = here("scenarios/go1_tiny_train.xml");
+const std::string kTinyAimTraining = here("scenarios/go1_tiny_aim_train.xml");
 
 std::string outDir(const std::string& name) {
   const std::string dir = std::string(PRONK_TRAINING_OUT_DIR) + "/" + name;
@@ -153,6 +154,47 @@ TEST(PronkTrain, ResumedRunEqualsAnUninterruptedOne) {
   EXPECT_EQ(ca["noise_rng"], cb["noise_rng"]);
   EXPECT_EQ(ca["jumps"], 32);
   EXPECT_EQ(cb["jumps"], 32);
+}
+
+// The aim correction with hindsight relabelling: the policy file says what it
+// is, its checkpoint carries the hindsight pairs (the newest 12 of the jumps
+// that ended standing), and a resumed run equals an uninterrupted one.
+TEST(PronkTrain, AimCorrectionWithHindsightResumesBitForBit) {
+  const std::string whole = outDir("train_aim_whole"), split = outDir("train_aim_split");
+  const Outcome a = pronk("train " + kTinyAimTraining + " --iterations 4 --jobs 2 --out " + whole + "/p.json");
+  ASSERT_EQ(a.status, 0) << a.output;
+  const Outcome b = pronk("train " + kTinyAimTraining + " --iterations 2 --jobs 2 --out " + split + "/p.json");
+  ASSERT_EQ(b.status, 0) << b.output;
+  const Outcome c = pronk("train " + kTinyAimTraining + " --iterations 4 --jobs 1 --out " + split + "/p.json --resume " +
+                          split + "/p.checkpoint.json");
+  ASSERT_EQ(c.status, 0) << c.output;
+  EXPECT_EQ(policyContent(whole + "/p.json"), policyContent(split + "/p.json"));
+  const json ca = readJson(whole + "/p.checkpoint.json"), cb = readJson(split + "/p.checkpoint.json");
+  EXPECT_EQ(ca["ppo"], cb["ppo"]);
+  EXPECT_EQ(ca["hindsight"], cb["hindsight"]);
+
+  const json policy = readJson(whole + "/p.json");
+  EXPECT_EQ(policy["prior"], json({{"kind", "prior_action_at_aim"}, {"environment", "jump"}}));
+  EXPECT_EQ(policy["layers"].back()["bias"].size(), 6u) << "an aim correction outputs an offset of the 6 observations";
+  EXPECT_EQ(policy["provenance"]["guidance"]["aim"], true);
+  EXPECT_EQ(policy["provenance"]["guidance"]["hindsight"], true);
+  const json& pairs = ca["hindsight"]["observations"];
+  ASSERT_TRUE(pairs.is_array());
+  EXPECT_GT(pairs.size(), 0u) << "no jump of 32 ended standing";
+  EXPECT_LE(pairs.size(), 12u);
+  EXPECT_EQ(ca["hindsight"]["actions"].size(), pairs.size());
+  EXPECT_NE(policy["layers"].back()["bias"], json(std::vector<double>(6, 0.0))) << "the hindsight fit changed nothing";
+  // The log has the hindsight columns, and PPO's actor stood still: the std is the file's.
+  const std::string log = readText(whole + "/train_log.csv");
+  EXPECT_NE(log.find(",hindsight_pairs,hindsight_added,hindsight_loss,"), std::string::npos);
+  EXPECT_NE(policy["action_log_std"], json()) << policy.dump().substr(0, 400);
+
+  // pronk run takes it.
+  const std::string run = outDir("train_aim_run");
+  const Outcome r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + whole + "/p.json --out " + run);
+  EXPECT_TRUE(r.status == 0 || r.status == 4) << r.output;
+  const json results = readJson(run + "/results.json");
+  ASSERT_TRUE(results.is_array() && results.size() == 1u) << r.output;
 }
 
 TEST(PronkTrain, DoesNotDependOnTheNumberOfJobs) {

@@ -27,15 +27,19 @@ struct MlpLayer {
   Activation activation = Activation::Linear;
 };
 
-// A residual policy's prior: the action is the prior's for the observation
-// plus the network's output. The only kind so far is "prior_action", the
-// environment's own analytic policy (ABI 1.1 prior_action, e.g. the jump
-// environment's ballistic planner), of the environment named here.
+// A policy's prior, the environment's own analytic policy (ABI 1.1
+// prior_action, e.g. the jump environment's ballistic planner) of the
+// environment named here, in one of two kinds:
+//   "prior_action":        a residual: action = prior_action(observation) + network(observation);
+//   "prior_action_at_aim": an aim correction: action = prior_action(observation + network(observation)),
+//                          the network's outputs an offset of the observation (for an environment
+//                          whose observation is its task, a corrected target to plan for).
 struct PolicyPrior {
   std::string kind = "prior_action";
   std::string environment;  // the environment factory's name, e.g. "jump"
 };
 inline constexpr const char* kPriorActionKind = "prior_action";
+inline constexpr const char* kAimPriorKind = "prior_action_at_aim";
 
 class MlpPolicy {
  public:

@@ -206,12 +206,30 @@ struct TrainingSpec {
   int validation_count = 100;
   unsigned long validation_seed = 1000;
   int validate_every = 10;
+  // false: PPO fits the critic only and leaves the actor (and its std) to the
+  // hindsight fit (<ppo actor="false">).
+  bool ppo_actor = true;
   // Guidance: the planner as prior (action = prior_action + residual, the
   // residual's last layer zero at the start); the critic fitted to the first
-  // batch before the first actor update; mirror symmetry (not built yet).
+  // batch before the first actor update; hindsight relabelling (the actor's
+  // mean fitted to the newest hindsight_samples (achieved task, action) pairs,
+  // hindsight_epochs passes per iteration); mirror symmetry (not built yet).
   bool residual = true;
+  // An aim correction instead (<guidance aim="true" residual="false">): the
+  // network's output offsets the observation the prior plans for.
+  bool aim = false;
   bool critic_warmup = true;
   int critic_warmup_epochs = 20;
+  bool hindsight = false;
+  int hindsight_epochs = 5;
+  int hindsight_samples = 16384;
+  int hindsight_minibatch = 256;
+  double hindsight_learning_rate = 1e-3;
+  // A pair is kept only when the prior at the achieved task differs from the
+  // prior at the target by at most this (raw units, any action): the planner's
+  // candidate search makes its action piecewise, and a residual is only
+  // meaningful within the piece it was taken in.
+  double hindsight_prior_step = 0.5;
   bool mirror = false;
   SourceLocation where;
 };

@@ -9,6 +9,9 @@
 // every few iterations the mean policy over the validation set. With
 // `residual` the action is the environment's prior_action plus the learned
 // residual, whose last layer starts at zero: iteration 0 is the planner.
+// With `hindsight`, after PPO's update the actor's mean is fitted to the
+// newest (achieved task, action - prior_action(achieved task)) pairs of every
+// jump that ended standing (hindsight.h).
 //
 // Determinism: every random number comes from three Rng streams (the
 // targets', the noise's and the learner's), all drawn on the calling thread;
@@ -83,6 +86,9 @@ struct TrainingIteration {
   bool validated = false;
   JumpSetFigures validation;
   double critic_warmup_loss = 0;       // the warm-up's last epoch (NaN without one)
+  // Hindsight (NaN without it): pairs in the buffer after this batch's, pairs
+  // this batch added, the mean fit's last epoch loss.
+  double hindsight_pairs = 0, hindsight_added = 0, hindsight_loss = 0;
   double policy_loss = 0, value_loss = 0, entropy = 0, kl = 0, clip_fraction = 0;
   double learning_rate = 0, std_mean = 0, value_mean = 0;
   double actor_gradient_norm = 0, critic_gradient_norm = 0;

@@ -86,8 +86,9 @@ const Eigen::VectorXd& MlpPolicy::actionLogStd() const {
 }
 
 void MlpPolicy::setPrior(std::optional<PolicyPrior> prior) {
-  if (prior && prior->kind != kPriorActionKind) {
-    throw Error("policy: prior.kind: unknown prior \"" + prior->kind + "\" (known: " + kPriorActionKind + ")");
+  if (prior && prior->kind != kPriorActionKind && prior->kind != kAimPriorKind) {
+    throw Error("policy: prior.kind: unknown prior \"" + prior->kind + "\" (known: " + kPriorActionKind + ", " +
+                kAimPriorKind + ")");
   }
   if (prior && prior->environment.empty()) throw Error("policy: prior.environment: empty");
   prior_ = std::move(prior);

@@ -161,10 +161,12 @@ class PolicyReader {
     checkKeys(v, path, {"kind", "environment"});
     PolicyPrior prior;
     const json& kind = required(v, path, "kind");
-    if (kind != kPriorActionKind) {
+    if (kind != kPriorActionKind && kind != kAimPriorKind) {
       fail(path.key("kind"), describe(kind) + " is not a known prior (known: \"" + kPriorActionKind +
-                                 "\", the environment's prior_action)");
+                                 "\", a residual over the environment's prior_action, and \"" + kAimPriorKind +
+                                 "\", an aim correction of it)");
     }
+    prior.kind = kind.get<std::string>();
     const json& environment = required(v, path, "environment");
     if (!environment.is_string() || environment.get<std::string>().empty()) {
       fail(path.key("environment"), "expected the environment's name, got " + describe(environment));

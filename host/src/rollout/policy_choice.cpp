@@ -1,6 +1,7 @@
 // The policies `pronk run --policy` knows: the environment's analytic prior, or
 // a policy file (docs/policy-format.md), which may be a residual over that
-// prior (version 2: action = prior_action + network).
+// prior (version 2: action = prior_action + network, or an aim correction:
+// action = prior_action(observation + network)).
 #include <memory>
 
 #include "pronk/policy.h"
@@ -19,12 +20,17 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
     };
   }
   auto network = std::make_shared<const MlpPolicy>(loadPolicy(name));
-  if (network->observationSize() != factory.observation_size || network->actionSize() != factory.action_size) {
+  const bool aim = network->prior() && network->prior()->kind == kAimPriorKind;
+  // An aim correction's network outputs an offset of the observation.
+  const int outputs = aim ? factory.observation_size : factory.action_size;
+  if (network->observationSize() != factory.observation_size || network->actionSize() != outputs) {
     throw InputError(SourceLocation{name, 0}, "the policy maps " + std::to_string(network->observationSize()) +
                                                   " numbers to " + std::to_string(network->actionSize()) +
                                                   "; environment '" + factory.name + "' observes " +
                                                   std::to_string(factory.observation_size) + " and takes " +
-                                                  std::to_string(factory.action_size));
+                                                  std::to_string(factory.action_size) +
+                                                  (aim ? " (an aim correction outputs an offset of the observation)"
+                                                       : ""));
   }
   const auto act = [network](const std::vector<double>& observation) {
     const Eigen::VectorXd a =
@@ -44,6 +50,13 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
     throw InputError(SourceLocation{name, 0}, "a residual over the prior_action of environment '" + prior.environment +
                                                   "', but that environment (" + factory.name +
                                                   ") has no prior_action");
+  }
+  if (aim) {
+    return [act](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t) {
+      std::vector<double> aimed = act(observation);
+      for (size_t i = 0; i < aimed.size(); ++i) aimed[i] += observation[i];
+      return env.priorAction(aimed);
+    };
   }
   return [act](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t) {
     std::vector<double> action = env.priorAction(observation);

@@ -73,6 +73,7 @@ void readPpo(const XMLElement& e, const SourceFile& file, TrainingSpec& t) {
   t.entropy_coefficient = r.number("entropy_coefficient", t.entropy_coefficient, Range::nonNegative());
   t.desired_kl = r.number("desired_kl", t.desired_kl, Range::positive());
   t.initial_std = r.number("initial_std", t.initial_std, Range::positive());
+  t.ppo_actor = r.boolean("actor", t.ppo_actor);
   r.rejectUnknownAttributes();
   r.children({});
 }
@@ -90,11 +91,22 @@ void readValidation(const XMLElement& e, const SourceFile& file, TrainingSpec& t
 void readGuidance(const XMLElement& e, const SourceFile& file, TrainingSpec& t) {
   ElementReader r(e, file);
   t.residual = r.boolean("residual", t.residual);
+  t.aim = r.boolean("aim", t.aim);
   t.critic_warmup = r.boolean("critic_warmup", t.critic_warmup);
   t.critic_warmup_epochs = static_cast<int>(r.integer("critic_warmup_epochs", t.critic_warmup_epochs, 1, 10000));
+  t.hindsight = r.boolean("hindsight", t.hindsight);
+  t.hindsight_epochs = static_cast<int>(r.integer("hindsight_epochs", t.hindsight_epochs, 1, 10000));
+  t.hindsight_samples = static_cast<int>(r.integer("hindsight_samples", t.hindsight_samples, 1, kMaxJumps));
+  t.hindsight_minibatch = static_cast<int>(r.integer("hindsight_minibatch", t.hindsight_minibatch, 1, kMaxJumps));
+  t.hindsight_learning_rate = r.number("hindsight_learning_rate", t.hindsight_learning_rate, Range::positive());
+  t.hindsight_prior_step = r.number("hindsight_prior_step", t.hindsight_prior_step, Range::positive());
   t.mirror = r.boolean("mirror", t.mirror);
   r.rejectUnknownAttributes();
   r.children({});
+  if (t.aim && t.residual) {
+    r.fail("aim=\"true\" and residual=\"true\": the policy is either an aim correction of the prior or a "
+           "residual over it; write residual=\"false\" with aim=\"true\"");
+  }
   if (t.mirror) r.fail("mirror=\"true\": mirror symmetry is not built yet; write mirror=\"false\"");
 }
 

@@ -18,6 +18,7 @@
 #include "pronk/report.h"
 #include "pronk/rollout.h"
 #include "pronk/training.h"
+#include "hindsight.h"
 #include "training_files.h"
 #include "training_streams.h"
 
@@ -38,18 +39,22 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 struct CaseDraw {
   bool ran = false;
   Eigen::VectorXd residual;  // the sampled network action (PPO's Gaussian sample)
+  Eigen::VectorXd prior;     // the environment's prior_action for the case (residual policies)
 };
 
 // What the rollout's policy reads: set on the calling thread before pool.run
 // and left alone while it runs.
 struct PolicyState {
   const PpoLearner* learner = nullptr;
-  bool residual = true;
+  bool residual = true;  // action = prior_action(observation) + network
+  bool aim = false;      // action = prior_action(observation + network)
   const Eigen::MatrixXd* noise = nullptr;  // action x cases standard normals; null: the mean policy
   std::vector<CaseDraw>* draws = nullptr;  // one per case; null: nothing recorded
 };
 
-// action = prior_action(observation) + mean(observation) + std * noise[case].
+// The network's output u = mean(observation) + std * noise[case]; the action is
+// prior_action(observation) + u (residual), prior_action(observation + u) (aim)
+// or u.
 Policy explorationPolicy(std::shared_ptr<const PolicyState> state) {
   return [state](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t seed) {
     const PolicyState& s = *state;
@@ -62,10 +67,18 @@ Policy explorationPolicy(std::shared_ptr<const PolicyState> state) {
         residual[i] += std::exp(log_std[i]) * (*s.noise)(i, static_cast<Eigen::Index>(seed));
       }
     }
+    if (s.aim) {
+      std::vector<double> aimed = observation;
+      for (size_t i = 0; i < aimed.size(); ++i) aimed[i] += residual[static_cast<Eigen::Index>(i)];
+      std::vector<double> action = env.priorAction(aimed);
+      if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual), Eigen::VectorXd()};
+      return action;
+    }
     std::vector<double> action(static_cast<size_t>(residual.size()), 0.0);
     if (s.residual) action = env.priorAction(observation);
+    Eigen::VectorXd prior = Eigen::Map<const Eigen::VectorXd>(action.data(), static_cast<Eigen::Index>(action.size()));
     for (size_t i = 0; i < action.size(); ++i) action[i] += residual[static_cast<Eigen::Index>(i)];
-    if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual)};
+    if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual), std::move(prior)};
     return action;
   };
 }
@@ -114,7 +127,7 @@ PpoConfig ppoConfigOf(const TrainingSpec& t) {
   PpoConfig c;
   c.actor_hidden_sizes = t.actor_hidden_sizes;
   c.critic_hidden_sizes = t.critic_hidden_sizes;
-  c.actor_init.zero_last_layer = t.residual;  // iteration 0 is exactly the prior
+  c.actor_init.zero_last_layer = t.residual || t.aim;  // iteration 0 is exactly the prior
   c.initial_std = t.initial_std;
   c.loss.clip = t.clip;
   c.loss.entropy_coefficient = t.entropy_coefficient;
@@ -122,6 +135,7 @@ PpoConfig ppoConfigOf(const TrainingSpec& t) {
   c.minibatches = t.minibatches;
   c.learning_rate = t.learning_rate;
   c.desired_kl = t.desired_kl;
+  c.update_actor = t.ppo_actor;
   return c;
 }
 
@@ -140,8 +154,16 @@ json settingsJson(const TrainingSpec& t) {
           {"desired_kl", t.desired_kl},
           {"initial_std", t.initial_std},
           {"residual", t.residual},
+          {"aim", t.aim},
           {"critic_warmup", t.critic_warmup},
           {"critic_warmup_epochs", t.critic_warmup_epochs},
+          {"ppo_actor", t.ppo_actor},
+          {"hindsight", t.hindsight},
+          {"hindsight_epochs", t.hindsight_epochs},
+          {"hindsight_samples", t.hindsight_samples},
+          {"hindsight_minibatch", t.hindsight_minibatch},
+          {"hindsight_learning_rate", t.hindsight_learning_rate},
+          {"hindsight_prior_step", t.hindsight_prior_step},
           {"mirror", t.mirror}};
 }
 
@@ -161,18 +183,21 @@ class Trainer {
           const TrainingProgress& on_row, const std::atomic<bool>* stop)
       : scenario_(scenario), options_(options), on_row_(on_row), stop_(stop), spec_(specOf(scenario, options)),
         sampler_(spec_), target_rng_(training_streams::targetSeed(spec_.seed)),
-        noise_rng_(training_streams::noiseSeed(spec_.seed)), validation_(validationCases(spec_)) {
+        noise_rng_(training_streams::noiseSeed(spec_.seed)), validation_(validationCases(spec_)),
+        hindsight_(spec_.hindsight_samples) {
     RolloutSetup setup = environmentSetup(scenario, registry, {}, "");
     factory_name_ = setup.factory->name;
     origin_ = setup.origin;
-    if (spec_.residual && setup.factory->environment->prior_action == nullptr) {
+    if ((spec_.residual || spec_.aim) && setup.factory->environment->prior_action == nullptr) {
       throw InputError(spec_.where, "<training>: residual=\"true\" needs the environment's prior_action as its prior; "
                                     "environment '" + factory_name_ + "' has none (write <guidance residual=\"false\">)");
     }
     observation_size_ = setup.factory->observation_size;
-    action_size_ = setup.factory->action_size;
+    // The network's outputs: an offset of the observation for an aim correction.
+    action_size_ = spec_.aim ? observation_size_ : setup.factory->action_size;
     state_ = std::make_shared<PolicyState>();
     state_->residual = spec_.residual;
+    state_->aim = spec_.aim;
     setup.policy = explorationPolicy(state_);
     paths_.policy = options.policy_path;
     paths_.checkpoint = checkpointPathFor(options.policy_path);
@@ -239,7 +264,8 @@ class Trainer {
     row.iteration = k;
     row.iterations = spec_.iterations;
     row.jumps = jumps_;
-    for (double* v : {&row.reward_mean, &row.reward_std, &row.critic_warmup_loss, &row.policy_loss, &row.value_loss,
+    for (double* v : {&row.reward_mean, &row.reward_std, &row.critic_warmup_loss, &row.hindsight_pairs,
+                      &row.hindsight_added, &row.hindsight_loss, &row.policy_loss, &row.value_loss,
                       &row.entropy, &row.kl, &row.clip_fraction, &row.learning_rate, &row.std_mean, &row.value_mean,
                       &row.actor_gradient_norm, &row.critic_gradient_norm, &row.jumps_per_s,
                       &row.batch.error_median, &row.batch.error_mean, &row.batch.within_02,
@@ -274,6 +300,8 @@ class Trainer {
     state_->draws = &draws;
     std::vector<std::vector<double>> observations(static_cast<size_t>(n));
     Eigen::VectorXd rewards = Eigen::VectorXd::Zero(n);
+    std::vector<std::optional<std::vector<double>>> achieved(static_cast<size_t>(n));
+    std::vector<std::vector<double>> taken(static_cast<size_t>(n));
     FiguresSink sink;
     const auto t0 = Clock::now();
     const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
@@ -281,6 +309,10 @@ class Trainer {
       sink.add(r);
       observations[r.index] = r.result.observation;
       rewards[static_cast<Eigen::Index>(r.index)] = r.result.reward;
+      if (spec_.hindsight && !r.setup_error) {
+        achieved[r.index] = hindsight::achievedTask(judgeJump(r), r.episode.target, spec_);
+        taken[r.index] = r.result.action;
+      }
     });
     state_->noise = nullptr;
     state_->draws = nullptr;
@@ -322,6 +354,7 @@ class Trainer {
       row.critic_warmup_loss = learner_->fitCritic(batch.observations, batch.rewards, spec_.critic_warmup_epochs);
     }
     const PpoUpdateStats s = learner_->update(batch);
+    if (spec_.hindsight) fitHindsight(row, used, achieved, taken, draws, observations);
     row.update_s = secondsSince(t1);
     row.policy_loss = s.policy_loss;
     row.value_loss = s.value_loss;
@@ -346,6 +379,59 @@ class Trainer {
     iteration_walls_.push_back(row.rollout_s + row.update_s + row.validation_s);
     finishRow(row);
     return true;
+  }
+
+  // The batch's hindsight pairs into the buffer, then the actor's mean fitted
+  // to the buffer. A pair's action is the residual that reaches the achieved
+  // task: the action taken minus the prior there (the taken action itself
+  // without a prior).
+  void fitHindsight(TrainingIteration& row, const std::vector<Eigen::Index>& used,
+                    const std::vector<std::optional<std::vector<double>>>& achieved,
+                    const std::vector<std::vector<double>>& taken, const std::vector<CaseDraw>& draws,
+                    const std::vector<std::vector<double>>& observations_of) {
+    std::vector<size_t> cases;
+    std::vector<std::vector<double>> tasks;
+    for (Eigen::Index i : used) {
+      if (achieved[static_cast<size_t>(i)]) {
+        cases.push_back(static_cast<size_t>(i));
+        tasks.push_back(*achieved[static_cast<size_t>(i)]);
+      }
+    }
+    std::vector<std::optional<std::vector<double>>> priors(tasks.size());
+    if (spec_.residual) priors = pool_->priorActions(tasks);
+    int added = 0;
+    for (size_t j = 0; j < cases.size(); ++j) {
+      if (spec_.residual && !priors[j]) continue;
+      Eigen::VectorXd target;
+      if (spec_.aim) {
+        // To land at the achieved task, aim where this jump aimed: the offset aim - achieved.
+        const std::vector<double>& o = observations_of[cases[j]];
+        target = Eigen::Map<const Eigen::VectorXd>(o.data(), static_cast<Eigen::Index>(o.size())) +
+                 draws[cases[j]].residual -
+                 Eigen::Map<const Eigen::VectorXd>(tasks[j].data(), static_cast<Eigen::Index>(tasks[j].size()));
+        if (target.size() != action_size_) continue;
+        hindsight_.add(tasks[j], target);
+        ++added;
+        continue;
+      }
+      const std::vector<double>& a = taken[cases[j]];
+      target = Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
+      if (spec_.residual) {
+        const Eigen::Map<const Eigen::VectorXd> there(priors[j]->data(), static_cast<Eigen::Index>(priors[j]->size()));
+        const double jump_of_prior = (there - draws[cases[j]].prior).cwiseAbs().maxCoeff();
+        if (jump_of_prior > spec_.hindsight_prior_step) continue;
+        target -= there;
+      }
+      if (!target.allFinite() || target.size() != action_size_) continue;
+      hindsight_.add(tasks[j], target);
+      ++added;
+    }
+    row.hindsight_added = added;
+    row.hindsight_pairs = hindsight_.size();
+    if (hindsight_.size() > 0) {
+      row.hindsight_loss = learner_->fitMean(hindsight_.observations(), hindsight_.actions(), spec_.hindsight_epochs,
+                                             spec_.hindsight_minibatch, spec_.hindsight_learning_rate);
+    }
   }
 
   void finishRow(TrainingIteration& row) {
@@ -375,6 +461,7 @@ class Trainer {
     c["log_columns"] = training_files::logColumns();
     c["log"] = log_;
     c["ppo"] = learner_->checkpoint();
+    if (spec_.hindsight) c["hindsight"] = hindsight_.toJson();
     training_files::writeJson(paths_.checkpoint, c, "training checkpoint");
   }
 
@@ -425,13 +512,24 @@ class Trainer {
     if (learner_->observationSize() != observation_size_ || learner_->actionSize() != action_size_) {
       read.fail("ppo", "the networks' sizes do not fit environment '" + factory_name_ + "'");
     }
+    if (spec_.hindsight) {
+      try {
+        hindsight_.fromJson(read.at(c, "hindsight"), observation_size_, action_size_);
+      } catch (const InputError&) {
+        throw;
+      } catch (const Error& e) {
+        throw InputError({path, 0}, e.what());
+      }
+    }
   }
 
   void writePolicyFile() const {
     MlpPolicy policy = learner_->policy();
     if (spec_.residual) policy.setPrior(PolicyPrior{kPriorActionKind, factory_name_});
+    if (spec_.aim) policy.setPrior(PolicyPrior{kAimPriorKind, factory_name_});
     policy.setDescription(scenario_.name + ": " +
-                          (spec_.residual ? "a residual over environment '" + factory_name_ + "''s prior_action"
+                          (spec_.aim        ? "an aim correction of environment '" + factory_name_ + "''s prior_action"
+                           : spec_.residual ? "a residual over environment '" + factory_name_ + "''s prior_action"
                                           : "a policy for environment '" + factory_name_ + "'") +
                           ", trained by pronk train");
     json p;
@@ -445,7 +543,12 @@ class Trainer {
     p["urdf"] = fs::path(scenario_.platform.urdf).filename().string();
     p["environment"] = factory_name_;
     p["plugin"] = fs::path(origin_).filename().string();
-    p["guidance"] = {{"residual", spec_.residual}, {"critic_warmup", spec_.critic_warmup}, {"mirror", spec_.mirror}};
+    p["guidance"] = {{"residual", spec_.residual},
+                     {"aim", spec_.aim},
+                     {"critic_warmup", spec_.critic_warmup},
+                     {"hindsight", spec_.hindsight},
+                     {"ppo_actor", spec_.ppo_actor},
+                     {"mirror", spec_.mirror}};
     if (last_validation_) {
       const JumpSetFigures& v = last_validation_->validation;
       p["validation"] = {{"iteration", last_validation_->iteration},
@@ -479,6 +582,7 @@ class Trainer {
   TargetSampler sampler_;
   Rng target_rng_, noise_rng_;
   std::vector<EpisodeCase> validation_;
+  hindsight::Buffer hindsight_;
   std::string factory_name_, origin_;
   int observation_size_ = 0, action_size_ = 0;
   std::shared_ptr<PolicyState> state_;
