@@ -345,6 +345,32 @@ TEST(Planner, RollCompensationLeansIntoASidewaysPush) {
   EXPECT_EQ(planJump(left, cfg).action.liftoff_rpy_rate_radps.x(), cfg.ranges[ActionParameter::kLiftOffRollRate].max);
 }
 
+// A sideways target whose every candidate loses a stance foot at the
+// default explosive acceleration: a harder (shorter) explosive phase keeps the
+// legs in reach, and the plan still lands on the target.
+TEST(Planner, HarderExplosivePhasesKeepTheLegsInReachWhereTheFirstPassCannot) {
+  PlannerConfig cfg = go1Config(true);
+  PlannerConfig first_pass_only = cfg;
+  first_pass_only.harder_explosive_accelerations.clear();
+  int converted = 0;
+  for (const JumpTarget& t : {JumpTarget{{-0.08, -0.54, 0.0}, 0.05}, JumpTarget{{0.11, -0.49, 0.0}, 0.34},
+                              JumpTarget{{1.15, 0.23, 0.0}, 0.21}, JumpTarget{{0.35, -0.52, 0.0}, 0.79}}) {
+    const PlannedJump refused = planJump(t, first_pass_only);
+    if (refused.feasible) continue;
+    ASSERT_EQ(refused.limit, PlanLimit::kLegWorkspace) << refused.reason;
+    const PlannedJump plan = planJump(t, cfg);
+    if (!plan.feasible) continue;
+    ++converted;
+    EXPECT_GT(plan.explosive_acceleration, cfg.max_explosive_acceleration + 1e-9);
+    EXPECT_LE(plan.explosive_acceleration, cfg.harder_explosive_accelerations.back() + 1e-9);
+    EXPECT_LT((flownLanding(plan, cfg) - plan.target_com).head<2>().norm(), 1e-6);
+    expectWithinRanges(plan.action, cfg.ranges);
+  }
+  EXPECT_GE(converted, 2);
+  cfg.harder_explosive_accelerations = {0.0};
+  EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
+}
+
 TEST(Planner, BadGentlerThrustsAreRefusedByName) {
   PlannerConfig cfg = go1Config(false);
   cfg.gentler_thrusts = {{{}, {0.5}, 1.25, 20.0}};

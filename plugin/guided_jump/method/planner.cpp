@@ -444,6 +444,9 @@ void PlannerConfig::check() const {
     }
   }
   if (!(std::isfinite(max_bezier_speed_mps) && max_bezier_speed_mps > 0.0)) configError("max_bezier_speed_mps must be > 0");
+  for (double a : harder_explosive_accelerations) {
+    if (!(std::isfinite(a) && a > 0.0)) configError("harder_explosive_accelerations must be finite and > 0");
+  }
   if (!(std::isfinite(max_explosive_acceleration) && max_explosive_acceleration > 0.0)) {
     configError("max_explosive_acceleration must be > 0");
   }
@@ -600,6 +603,15 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config) {
     throw std::invalid_argument("planJump: the target displacement and yaw must be finite");
   }
   PlannedJump plan = searchCandidates(target, config);
+  // Every candidate loses a stance foot: a stronger explosive phase is shorter,
+  // so its Bezier part ends nearer the lift-off and the legs keep their reach.
+  for (double acceleration : config.harder_explosive_accelerations) {
+    if (plan.feasible || plan.limit != PlanLimit::kLegWorkspace) break;
+    PlannerConfig harder = config;
+    harder.max_explosive_acceleration = acceleration;
+    const PlannedJump next = searchCandidates(target, harder);
+    if (next.feasible) plan = next;
+  }
   for (const PlannerConfig::GentlerThrust& gentler : config.gentler_thrusts) {
     if (plan.feasible || plan.limit != PlanLimit::kTorque) break;
     PlannerConfig relieved = config;

@@ -31,7 +31,8 @@
 //      in order, and the first feasible candidate wins;
 //   8. when the motors' torque (thrustExceedsTorque) refuses every candidate, the
 //      search repeats with each of gentler_thrusts: lower lift-offs, longer
-//      thrusts, a lower explosive acceleration.
+//      thrusts, a lower explosive acceleration; when the leg workspace refuses
+//      every candidate, it repeats with harder_explosive_accelerations.
 #pragma once
 
 #include <Eigen/Core>
@@ -125,6 +126,13 @@ struct PlannerConfig {
       {{0.02, 0.0, -0.02, -0.04, -0.06, -0.08}, {0.45, 0.6, 0.8}, 1.75, 12.0},
       {{0.02, 0.0, -0.02, -0.04, -0.06}, {0.45, 0.6, 0.8}, 1.75, 8.0},
   };
+
+  // When every candidate loses a stance foot (PlanLimit::kLegWorkspace), the
+  // search runs again with each of these explosive accelerations (m/s^2) in
+  // turn, and the first feasible plan wins: a stronger explosive phase is
+  // shorter, so the thrust path stays within the legs' reach (docs/method-planner.md,
+  // step 12). The torque check still refuses what the motors cannot push.
+  std::vector<double> harder_explosive_accelerations{25.0, 30.0, 35.0};
 
   std::optional<LegWorkspace> workspace;  // empty: legs and support not checked
   // With a workspace: the least share of the mean vertical foot force any
