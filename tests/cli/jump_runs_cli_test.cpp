@@ -237,6 +237,31 @@ TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRuns) {
   EXPECT_NE(reason.find("apex_below_target"), std::string::npos) << reason;
 }
 
+TEST(JumpRuns, PluginWarningsGoToEachJumpsEventsAndOnlyTheFirstTenToStderr) {
+  const std::string dir = outDir("many_infeasible");
+  const CommandRun r = pronk("run " + testScenario("go1_many_infeasible.xml") + " --policy ballistic --jobs 2 --out " +
+                             dir);
+  EXPECT_EQ(r.status, 4) << r.output;
+  size_t printed = 0;
+  for (size_t at = r.output.find("plugin warning: "); at != std::string::npos;
+       at = r.output.find("plugin warning: ", at + 1)) {
+    ++printed;
+  }
+  EXPECT_EQ(printed, 10u) << r.output;
+  EXPECT_NE(r.output.find("plugin: further info and warning lines are not printed"), std::string::npos) << r.output;
+  const nlohmann::json jumps = results(dir);
+  ASSERT_TRUE(jumps.is_array() && jumps.size() == 14u) << r.output;
+  for (const nlohmann::json& jump : jumps) {
+    EXPECT_EQ(jump["status"], "rejected");
+    bool warned = false;
+    for (const nlohmann::json& e : jump["event_log"]) {
+      warned = warned || (e["name"] == "plugin_warning" &&
+                          e["detail"].get<std::string>().find("no feasible jump") != std::string::npos);
+    }
+    EXPECT_TRUE(warned) << jump["event_log"].dump();
+  }
+}
+
 TEST(JumpRuns, SweepCasesAreSeededAndReproducible) {
   const std::string a = outDir("jump_sweep_a"), b = outDir("jump_sweep_b");
   const CommandRun ra = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --out " + a);

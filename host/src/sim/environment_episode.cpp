@@ -47,6 +47,7 @@ EnvironmentEpisodeResult runEnvironmentEpisode(World& world, const pronk_factory
   if (out.rejected) {
     out.episode.trace.joint_names = world.jointNames();
     out.episode.trace.foot_links = world.footLinks();
+    out.episode.trace.events = plugin.events;  // what the environment said before it refused
     out.episode.trace.addEvent(world.time(), "rejected", *out.rejected);
     out.episode.trace.metrics = plugin.metrics;
     return out;

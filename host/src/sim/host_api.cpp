@@ -1,5 +1,6 @@
 // The plugin ABI's host side: the kinematics a plugin asks for, computed by the
 // World, and plugin controller instances behind the host's Controller interface.
+#include <atomic>
 #include <cstring>
 
 #include "pronk/controller.h"
@@ -7,12 +8,35 @@
 namespace pronk {
 namespace {
 
-void log(void*, int32_t level, const char* message) {
-  static const char* prefix[] = {"info", "warning", "error"};
-  std::fprintf(stderr, "plugin %s: %s\n", prefix[std::clamp(level, 0, 2)], message ? message : "");
-}
-
 const HostApi& self(void* host) { return *static_cast<const HostApi*>(host); }
+
+// A plugin's warnings and errors also go into the episode's trace as events
+// ("plugin_warning", "plugin_error": results.json says which jump had them).
+// stderr gets every error but only the first kPrintedLogLines info and warning
+// lines of a process, then one line saying so: a sweep or a training run would
+// otherwise print a line for every infeasible plan.
+constexpr int kPrintedLogLines = 10;
+std::atomic<int> g_printed_log_lines{0};
+
+void log(void* host, int32_t level, const char* message) {
+  static const char* prefix[] = {"info", "warning", "error"};
+  const int l = std::clamp(level, 0, 2);
+  const char* text = message ? message : "";
+  if (l >= 1 && host) {
+    const HostApi& h = self(host);
+    if (Trace* t = h.trace()) t->addEvent(h.world().time(), l == 1 ? "plugin_warning" : "plugin_error", text);
+  }
+  if (l < 2) {
+    const int n = g_printed_log_lines.fetch_add(1);
+    if (n > kPrintedLogLines) return;
+    if (n == kPrintedLogLines) {
+      std::fprintf(stderr, "plugin: further info and warning lines are not printed; each jump's warnings are "
+                           "events of its results (plugin_warning)\n");
+      return;
+    }
+  }
+  std::fprintf(stderr, "plugin %s: %s\n", prefix[l], text);
+}
 bool validFoot(void* host, int32_t foot) { return foot >= 0 && foot < self(host).world().footCount(); }
 
 int32_t jointCount(void* host) { return self(host).world().jointCount(); }
