@@ -169,7 +169,7 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("jump"), std::string::npos);
-  EXPECT_NE(o.output.find("ABI 1.3"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("ABI 1.4"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
             std::string::npos)
       << o.output;
@@ -289,7 +289,7 @@ TEST(Cli, AScenarioNeverWritesAVideoByItselfNorOutsideOut) {
 TEST(Cli, VersionMissingScenarioAndPluginAfterTheSubcommand) {
   const Outcome version = pronk("--version");
   EXPECT_EQ(version.status, 0) << version.output;
-  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.3, commit "), std::string::npos)
+  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.4, commit "), std::string::npos)
       << version.output;
   // A missing scenario is bad input (exit 3) named by the loader, for every command that reads one.
   for (const std::string command : {"run", "validate", "render -o x.mp4"}) {

@@ -83,6 +83,19 @@ TEST(ResidualPolicy, WithAZeroHeadJumpsExactlyAsThePlanner) {
   EXPECT_NE(ja[0]["action"], json()) << "the results name the action";
 }
 
+// An aim correction with a zero head aims at the target itself: the planner's jumps exactly.
+TEST(AimPolicy, WithAZeroHeadJumpsExactlyAsThePlanner) {
+  const std::string planner = outDir("aim_planner"), aim = outDir("aim_zero");
+  const std::string scenario = source("scenarios/go1/mixed.xml");
+  const Outcome a = pronk("run " + scenario + " --policy ballistic --jobs 2 --out " + planner);
+  const Outcome b = pronk("run " + scenario + " --policy " + here("policies/zero_aim.json") + " --jobs 2 --out " + aim);
+  ASSERT_TRUE(a.status == 0 || a.status == 4) << a.output;
+  EXPECT_EQ(b.status, a.status) << b.output;
+  const json ja = readJson(planner + "/results.json"), jb = readJson(aim + "/results.json");
+  ASSERT_TRUE(ja.is_array() && ja.size() == 7u) << a.output;
+  EXPECT_EQ(without(ja, {"wall_s"}), without(jb, {"wall_s"}));
+}
+
 TEST(ResidualPolicy, OverAnotherEnvironmentIsAnErrorNamingTheFile) {
   const std::string file = here("policies/residual_of_another_environment.json");
   const Outcome r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + file);

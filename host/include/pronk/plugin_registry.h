@@ -176,7 +176,13 @@ class EnvironmentInstance {
   EnvironmentInstance& operator=(const EnvironmentInstance&) = delete;
 
   // Starts an episode; returns the observation (observation_size numbers).
+  // `state` must stay valid until act() for retask().
   std::vector<double> reset(const std::vector<double>& task, uint64_t seed, const pronk_robot_state& state);
+  // Starts the episode again with another task, from the last reset's state and
+  // seed (before act(): nothing has moved); returns its observation. An aim
+  // correction gives the environment the aim as its task, so that the task's
+  // own frame (the jump environment's jump plane) is the aim's.
+  std::vector<double> retask(const std::vector<double>& task);
   // The episode's action; its length must be the factory's action_size. Returns
   // the environment's reason when it rejects the action (PRONK_REJECTED: the
   // episode must not run), std::nullopt when the action was taken.
@@ -185,6 +191,13 @@ class EnvironmentInstance {
   bool hasPriorAction() const;
   // Its action for an observation; throws Error when there is none or it fails.
   std::vector<double> priorAction(const std::vector<double>& observation);
+  // The same with the environment's verdict (ABI 1.4): `infeasible` holds its
+  // reason when it expects act() to refuse the action (its best try).
+  struct PriorAction {
+    std::vector<double> action;
+    std::optional<std::string> infeasible;
+  };
+  PriorAction prior(const std::vector<double>& observation);
   // One control tick; returns true when the environment ends the episode early.
   bool step(const pronk_robot_state& state, double* torque);
   // The episode's reward.
@@ -196,6 +209,8 @@ class EnvironmentInstance {
   const pronk_factory& factory_;
   std::string origin_;
   void* instance_ = nullptr;
+  uint64_t reset_seed_ = 0;
+  const pronk_robot_state* reset_state_ = nullptr;  // the last reset's, until act()
 };
 
 }  // namespace pronk

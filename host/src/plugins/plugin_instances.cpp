@@ -79,7 +79,14 @@ std::vector<double> EnvironmentInstance::reset(const std::vector<double>& task, 
                                   observation.data(), m.text, kMessageSize) != PRONK_OK) {
     throw Error(describe() + ": reset failed: " + m.str());
   }
+  reset_seed_ = seed;
+  reset_state_ = &state;
   return observation;
+}
+
+std::vector<double> EnvironmentInstance::retask(const std::vector<double>& task) {
+  if (!reset_state_) throw Error(describe() + ": retask() needs a reset() before it and no act() since");
+  return reset(task, reset_seed_, *reset_state_);
 }
 
 std::optional<std::string> EnvironmentInstance::act(const std::vector<double>& action) {
@@ -87,6 +94,7 @@ std::optional<std::string> EnvironmentInstance::act(const std::vector<double>& a
     throw Error(describe() + " takes " + std::to_string(factory_.action_size) + " action numbers, got " +
                 std::to_string(action.size()));
   }
+  reset_state_ = nullptr;  // the episode starts: no retask() now
   Message m;
   const pronk_status st = factory_.environment->act(instance_, action.data(), m.text, kMessageSize);
   if (st == PRONK_REJECTED) return m.str();
@@ -97,21 +105,29 @@ std::optional<std::string> EnvironmentInstance::act(const std::vector<double>& a
 bool EnvironmentInstance::hasPriorAction() const { return factory_.environment->prior_action != nullptr; }
 
 std::vector<double> EnvironmentInstance::priorAction(const std::vector<double>& observation) {
+  return prior(observation).action;
+}
+
+EnvironmentInstance::PriorAction EnvironmentInstance::prior(const std::vector<double>& observation) {
   if (!hasPriorAction()) throw Error(describe() + " offers no prior action (analytic policy)");
   if (static_cast<int32_t>(observation.size()) != factory_.observation_size) {
     throw Error(describe() + " observes " + std::to_string(factory_.observation_size) + " numbers, got " +
                 std::to_string(observation.size()));
   }
-  std::vector<double> action(static_cast<size_t>(factory_.action_size), 0.0);
+  PriorAction out;
+  out.action.assign(static_cast<size_t>(factory_.action_size), 0.0);
   Message m;
-  if (factory_.environment->prior_action(instance_, observation.data(), action.data(), m.text, kMessageSize) !=
-      PRONK_OK) {
+  const pronk_status status =
+      factory_.environment->prior_action(instance_, observation.data(), out.action.data(), m.text, kMessageSize);
+  if (status == PRONK_REJECTED) {
+    out.infeasible = m.str();
+  } else if (status != PRONK_OK) {
     throw Error(describe() + ": prior_action failed: " + m.str());
   }
-  for (double a : action) {
+  for (double a : out.action) {
     if (!std::isfinite(a)) throw Error(describe() + ": prior_action returned a number that is not finite");
   }
-  return action;
+  return out;
 }
 
 bool EnvironmentInstance::step(const pronk_robot_state& state, double* torque) {

@@ -52,10 +52,16 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
                                                   ") has no prior_action");
   }
   if (aim) {
+    // The environment takes the aim as its task (its frame, e.g. the jump plane,
+    // is the aim's); an aim the prior has no feasible action for falls back to
+    // the task itself.
     return [act](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t) {
       std::vector<double> aimed = act(observation);
       for (size_t i = 0; i < aimed.size(); ++i) aimed[i] += observation[i];
-      return env.priorAction(aimed);
+      EnvironmentInstance::PriorAction p = env.prior(aimed);
+      if (p.infeasible) return env.priorAction(observation);
+      env.retask(aimed);
+      return std::move(p.action);
     };
   }
   return [act](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t) {

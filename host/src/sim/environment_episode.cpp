@@ -39,11 +39,12 @@ EnvironmentEpisodeResult runEnvironmentEpisode(World& world, const pronk_factory
   const HostApi host(world, &plugin);
   EnvironmentInstance env(factory, origin, *host.api(), params);
   {
+    // Alive until act(): the policy may retask() the environment (an aim correction).
     const AbiStateView view(world.state());
     out.observation = env.reset(task, seed, *view.get());
+    out.action = policy(out.observation, env, seed);
+    out.rejected = env.act(out.action);
   }
-  out.action = policy(out.observation, env, seed);
-  out.rejected = env.act(out.action);
   if (out.rejected) {
     out.episode.trace.joint_names = world.jointNames();
     out.episode.trace.foot_links = world.footLinks();

@@ -40,6 +40,9 @@ struct CaseDraw {
   bool ran = false;
   Eigen::VectorXd residual;  // the sampled network action (PPO's Gaussian sample)
   Eigen::VectorXd prior;     // the environment's prior_action for the case (residual policies)
+  // An aim correction's aim offset as taken: the sample, or 0 where the prior
+  // had no feasible action for the aim and planned for the task itself.
+  Eigen::VectorXd aim_taken;
 };
 
 // What the rollout's policy reads: set on the calling thread before pool.run
@@ -68,17 +71,25 @@ Policy explorationPolicy(std::shared_ptr<const PolicyState> state) {
       }
     }
     if (s.aim) {
+      // As makePolicy's aim correction: an aim without a feasible plan falls back to the task.
       std::vector<double> aimed = observation;
       for (size_t i = 0; i < aimed.size(); ++i) aimed[i] += residual[static_cast<Eigen::Index>(i)];
-      std::vector<double> action = env.priorAction(aimed);
-      if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual), Eigen::VectorXd()};
-      return action;
+      EnvironmentInstance::PriorAction p = env.prior(aimed);
+      Eigen::VectorXd taken = residual;
+      if (p.infeasible) {
+        p.action = env.priorAction(observation);
+        taken.setZero();
+      } else {
+        env.retask(aimed);
+      }
+      if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual), Eigen::VectorXd(), std::move(taken)};
+      return p.action;
     }
     std::vector<double> action(static_cast<size_t>(residual.size()), 0.0);
     if (s.residual) action = env.priorAction(observation);
     Eigen::VectorXd prior = Eigen::Map<const Eigen::VectorXd>(action.data(), static_cast<Eigen::Index>(action.size()));
     for (size_t i = 0; i < action.size(); ++i) action[i] += residual[static_cast<Eigen::Index>(i)];
-    if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual), std::move(prior)};
+    if (s.draws) (*s.draws)[seed] = CaseDraw{true, std::move(residual), std::move(prior), Eigen::VectorXd()};
     return action;
   };
 }
@@ -407,7 +418,7 @@ class Trainer {
         // To land at the achieved task, aim where this jump aimed: the offset aim - achieved.
         const std::vector<double>& o = observations_of[cases[j]];
         target = Eigen::Map<const Eigen::VectorXd>(o.data(), static_cast<Eigen::Index>(o.size())) +
-                 draws[cases[j]].residual -
+                 draws[cases[j]].aim_taken -
                  Eigen::Map<const Eigen::VectorXd>(tasks[j].data(), static_cast<Eigen::Index>(tasks[j].size()));
         if (target.size() != action_size_) continue;
         hindsight_.add(tasks[j], target);

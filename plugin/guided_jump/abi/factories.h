@@ -10,6 +10,11 @@ const pronk_factory* guidedJumpControllerFactory();
 // environment `jump` (jump_environment.cpp)
 const pronk_factory* jumpEnvironmentFactory();
 
+// The minor ABI version the host negotiated (pronk_plugin_query sets it):
+// what the plugin may answer with (1.4: prior_action's PRONK_REJECTED).
+void setNegotiatedAbiMinor(uint32_t minor);
+uint32_t negotiatedAbiMinor();
+
 // The control period both factories declare, s.
 constexpr double kControlPeriod = 0.001;
 

@@ -12,7 +12,9 @@
 //   finish():        the paper's reward with every term reported as a metric
 //                    (method/reward.h), plus the plan's predictions;
 //   prior_action():  the analytic ballistic planner (method/planner.h) as raw
-//                    outputs: `pronk run --policy ballistic`.
+//                    outputs: `pronk run --policy ballistic`; PRONK_REJECTED
+//                    (ABI 1.4) with the plan's best try when it finds no
+//                    feasible jump.
 // The frame of the reward and the plan is the controller's start frame S (origin
 // on the ground below the CoM at the thrust start, x along the heading then).
 #include <array>
@@ -166,7 +168,9 @@ class JumpEnvironment {
     has_task_ = true;
   }
 
-  std::vector<double> priorAction(const double* observation) {
+  // The planner's action for an observation; *infeasible gets its reason when
+  // it found no feasible plan (the action is then its best try).
+  std::vector<double> priorAction(const double* observation, std::string* infeasible) {
     if (!has_task_) throw InvalidArgument("prior_action() before reset(): the planner needs the start pose");
     jump::PlannerConfig config;
     config.ranges = settings_.ranges;
@@ -184,6 +188,7 @@ class JumpEnvironment {
     if (!plan.feasible && host_->log) {
       host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + plan.reason).c_str());
     }
+    if (!plan.feasible && infeasible) *infeasible = "no feasible jump: " + plan.reason;
     const jump::ActionVector raw = jump::unmapAction(plan.action, settings_.ranges);
     return std::vector<double>(raw.begin(), raw.end());
   }
@@ -474,12 +479,17 @@ pronk_status finish(void* instance, const pronk_robot_state* state, double* rewa
 }
 
 pronk_status priorAction(void* instance, const double* observation, double* action, char* error, size_t error_size) {
-  return guarded(error, error_size, [&] {
+  std::string infeasible;
+  const pronk_status status = guarded(error, error_size, [&] {
     need(instance, observation);
     if (!action) throw InvalidArgument("no action buffer");
-    const std::vector<double> a = self(instance)->priorAction(observation);
+    const std::vector<double> a = self(instance)->priorAction(observation, &infeasible);
     std::copy(a.begin(), a.end(), action);
   });
+  // A host before 1.4 takes any status but PRONK_OK for an error.
+  if (status != PRONK_OK || infeasible.empty() || negotiatedAbiMinor() < 4) return status;
+  writeError(error, error_size, infeasible.c_str());
+  return PRONK_REJECTED;
 }
 
 void destroy(void* instance) { delete self(instance); }

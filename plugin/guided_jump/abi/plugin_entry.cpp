@@ -1,4 +1,5 @@
 // The plugin's one exported symbol: the ABI handshake and the manifest.
+#include <atomic>
 #include <cstddef>
 
 #include "abi/abi_boundary.h"
@@ -7,6 +8,14 @@
 #ifndef PRONK_VERSION
 #error "PRONK_VERSION must be defined by the build"
 #endif
+
+namespace pronk::guided_jump {
+namespace {
+std::atomic<uint32_t> g_negotiated_minor{0};
+}  // namespace
+void setNegotiatedAbiMinor(uint32_t minor) { g_negotiated_minor = minor; }
+uint32_t negotiatedAbiMinor() { return g_negotiated_minor; }
+}  // namespace pronk::guided_jump
 
 extern "C" PRONK_PLUGIN_EXPORT pronk_status pronk_plugin_query(uint32_t host_abi_version, pronk_plugin_manifest* manifest,
                                                                char* error, size_t error_size) {
@@ -28,6 +37,7 @@ extern "C" PRONK_PLUGIN_EXPORT pronk_status pronk_plugin_query(uint32_t host_abi
     static const pronk_factory* const factories[] = {guidedJumpControllerFactory(), jumpEnvironmentFactory()};
     const uint32_t host_minor = PRONK_ABI_VERSION_MINOR(host_abi_version);
     manifest->abi_version = PRONK_ABI_VERSION(PRONK_ABI_MAJOR, host_minor > PRONK_ABI_MINOR ? PRONK_ABI_MINOR : host_minor);
+    setNegotiatedAbiMinor(PRONK_ABI_VERSION_MINOR(manifest->abi_version));
     manifest->plugin_name = "pronk_guided_jump";
     manifest->plugin_version = PRONK_VERSION;
     manifest->factory_count = sizeof(factories) / sizeof(factories[0]);

@@ -45,6 +45,9 @@
  *   1.3  pronk_factory::metrics, task_names, markers: an environment declares as data
  *        the metrics it reports, the layout of its task vector and the markers a
  *        video may draw, so that a host's tables, files and videos name none of them.
+ *   1.4  prior_action may return PRONK_REJECTED after writing its best try: the
+ *        environment expects act() to refuse that action (a plugin returns it only
+ *        when it negotiated 1.4 or later).
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -59,7 +62,7 @@ extern "C" {
 #endif
 
 #define PRONK_ABI_MAJOR 1u
-#define PRONK_ABI_MINOR 3u
+#define PRONK_ABI_MINOR 4u
 #define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
 #define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
 #define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
@@ -220,7 +223,9 @@ typedef struct pronk_environment_ops {
   /* 1.1, optional (NULL: none): the environment's own analytic policy, an action
      (action_size numbers, in the same units as act() takes) for an observation
      (observation_size numbers), computed without simulating. For the jump: the
-     ballistic planner. Usable as a baseline and as a learned policy's prior. */
+     ballistic planner. Usable as a baseline and as a learned policy's prior.
+     1.4: PRONK_REJECTED (with the reason) when the environment has no action for
+     the observation that act() would take; `action` then still holds its best try. */
   pronk_status (*prior_action)(void* instance, const double* observation, double* action,
                                char* error, size_t error_size);
 } pronk_environment_ops;
