@@ -92,6 +92,25 @@ TEST_F(JumpEnvironment, SafetyFilterRejectsAnImpossibleUpJumpBeforeItRuns) {
   EXPECT_THROW(env_->step(robot_.state(), tau.data()), Error);
 }
 
+// ABI 1.4: the planner's verdict comes with its action; retask() starts the
+// episode again with another task (an aim correction's), nothing moved.
+TEST_F(JumpEnvironment, PriorActionSaysWhenItHasNoFeasiblePlanAndRetaskChangesTheTask) {
+  const std::vector<double> obs = env_->reset({0.4, 0, 0, 0, 0, 0}, 0, robot_.state());
+  const EnvironmentInstance::PriorAction feasible = env_->prior(obs);
+  EXPECT_EQ(feasible.infeasible, std::nullopt);
+  EXPECT_EQ(feasible.action, env_->priorAction(obs));
+  const EnvironmentInstance::PriorAction far = env_->prior({3.0, 0, 0, 0, 0, 0});
+  ASSERT_TRUE(far.infeasible.has_value());
+  EXPECT_THAT(*far.infeasible, HasSubstr("no feasible jump"));
+  ASSERT_EQ(far.action.size(), 13u);  // its best try, which act() refuses
+  const std::vector<double> aimed = env_->retask({0.45, 0.02, 0, 0.05, 0, 0});
+  EXPECT_EQ(aimed, (std::vector<double>{0.45, 0.02, 0, 0.05, 0, 0}));
+  EXPECT_EQ(env_->act(env_->priorAction(aimed)), std::nullopt);
+  EXPECT_NEAR(robot_.metrics["predicted_landing_y"], 0.02 * robot_.metrics["predicted_landing_x"] / 0.45, 1e-3)
+      << "the jump plane is the new task's";
+  EXPECT_THROW(env_->retask(obs), Error) << "no retask once the action is taken";
+}
+
 TEST_F(JumpEnvironment, StepNeedsAnActionAndEndsAtTheDuration) {
   const std::vector<double> obs = env_->reset({0.4, 0, 0, 0, 0, 0}, 0, robot_.state());
   std::vector<double> tau(robot_.jointCount());
