@@ -155,6 +155,27 @@ TEST_F(Rollout, RecordsArriveInCaseOrderAndASinkErrorStopsTheRun) {
   for (size_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
 }
 
+TEST_F(Rollout, ACaseWhosePolicyThrowsFailsAloneWithItsReason) {
+  RolloutSetup s = setup();
+  const Policy planner = s.policy;
+  s.policy = [planner](const std::vector<double>& observation, EnvironmentInstance& env, uint64_t seed) {
+    if (seed == 1) throw Error("this policy has no action for case 1");
+    return planner(observation, env, seed);
+  };
+  const std::vector<EpisodeCase> cases = sweepCases(scenario_, "mass");  // "ahead" three times
+  ASSERT_EQ(cases.size(), 3u);
+  RolloutOptions options;
+  options.threads = 2;
+  RolloutPool pool(std::move(s), options);
+  std::vector<JumpOutcome> outcomes;
+  EXPECT_EQ(pool.run(cases, [&](EpisodeRecord& r) { outcomes.push_back(judgeJump(r)); }), cases.size());
+  ASSERT_EQ(outcomes.size(), cases.size());
+  EXPECT_EQ(outcomes[1].status, "failed");
+  EXPECT_NE(outcomes[1].reason.find("this policy has no action for case 1"), std::string::npos) << outcomes[1].reason;
+  EXPECT_EQ(outcomes[0].status, "ok") << outcomes[0].reason;
+  EXPECT_EQ(outcomes[2].status, "ok") << outcomes[2].reason;
+}
+
 TEST_F(Rollout, ACaseThatCannotBeSetUpFailsAloneWithItsReason) {
   // A height target straight above the start has no room for a platform edge.
   std::vector<EpisodeCase> cases = targetCases(scenario_);

@@ -65,7 +65,9 @@ struct EpisodeRecord {
   EpisodeCase episode;
   EnvironmentEpisodeResult result;  // task, observation, action, reward, trace, failure
   // The case could not be set up (e.g. a step platform with no room for its
-  // edge): nothing ran, the rest of the run goes on.
+  // edge): nothing ran, the rest of the run goes on. A case whose environment
+  // or policy throws pronk::Error fails alone too: result.episode.failure,
+  // reason "error".
   std::optional<std::string> setup_error;
 };
 

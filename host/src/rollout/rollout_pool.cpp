@@ -61,8 +61,18 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
   options.record_body_poses = options_.record_body_poses;
   options.end_at_rest = options_.end_at_rest;
   const TargetSpec& t = episode.target;
-  record.result = runEnvironmentEpisode(*worker.world, *setup_.factory, setup_.origin, setup_.params,
-                                        {t.x, t.y, t.z, t.yaw, t.roll, t.pitch}, index, setup_.policy, options);
+  try {
+    record.result = runEnvironmentEpisode(*worker.world, *setup_.factory, setup_.origin, setup_.params,
+                                          {t.x, t.y, t.z, t.yaw, t.roll, t.pitch}, index, setup_.policy, options);
+  } catch (const Error& e) {
+    // The environment or the policy failed on this case (a plugin error, an
+    // action it refuses to take as an error): the case fails alone, with the
+    // reason; its World is not reused.
+    worker.world.reset();
+    record.result = EnvironmentEpisodeResult{};
+    record.result.task = {t.x, t.y, t.z, t.yaw, t.roll, t.pitch};
+    record.result.episode.failure = Failure{0.0, "error", e.what()};
+  }
   return record;
 }
 
