@@ -200,8 +200,9 @@ class Trainer {
     factory_name_ = setup.factory->name;
     origin_ = setup.origin;
     if ((spec_.residual || spec_.aim) && setup.factory->environment->prior_action == nullptr) {
-      throw InputError(spec_.where, "<training>: residual=\"true\" needs the environment's prior_action as its prior; "
-                                    "environment '" + factory_name_ + "' has none (write <guidance residual=\"false\">)");
+      throw InputError(spec_.where, std::string("<training>: ") + (spec_.aim ? "aim" : "residual") +
+                                        "=\"true\" needs the environment's prior_action as its prior; environment '" +
+                                        factory_name_ + "' has none (write <guidance residual=\"false\" aim=\"false\">)");
     }
     observation_size_ = setup.factory->observation_size;
     // The network's outputs: an offset of the observation for an aim correction.
