@@ -37,7 +37,8 @@ cmake --preset release
 cmake --build --preset release -j "$jobs"
 
 if [ "$mode" = demo ]; then
-  ./build/release/bin/pronk run scenarios/go1/forward.xml --policy ballistic --trace --out out/go1-forward \
+  ./build/release/bin/pronk run scenarios/go1/forward.xml --policy assets/policies/go1_flat_aim.json --trace \
+    --out out/go1-forward \
     --video out/go1-forward/forward.mp4
 else
   ctest --preset release -j "$jobs"

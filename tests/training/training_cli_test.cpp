@@ -96,6 +96,25 @@ TEST(AimPolicy, WithAZeroHeadJumpsExactlyAsThePlanner) {
   EXPECT_EQ(without(ja, {"wall_s"}), without(jb, {"wall_s"}));
 }
 
+// The shipped Go1 policy (docs/training.md) loads, says what it is and where it
+// came from, and lands the forward jump within the file's tolerance (5 cm, 5 deg;
+// measured 2.0 cm, 2.9 deg): the README's main job.
+TEST(ShippedPolicy, Go1FlatAimLandsTheForwardJumpWithinItsTolerance) {
+  const std::string file = source("assets/policies/go1_flat_aim.json");
+  const json policy = readJson(file);
+  ASSERT_TRUE(policy.is_object()) << file;
+  EXPECT_EQ(policy["prior"], json({{"kind", "prior_action_at_aim"}, {"environment", "jump"}}));
+  EXPECT_EQ(policy["provenance"]["robot"], "go1");
+  EXPECT_EQ(policy["provenance"]["jumps"], 10240);
+  EXPECT_EQ(policy["provenance"]["validation"]["seed"], 1001);
+  const std::string dir = outDir("shipped_forward");
+  const Outcome r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + file + " --out " + dir);
+  EXPECT_EQ(r.status, 0) << r.output;
+  const json results = readJson(dir + "/results.json");
+  ASSERT_TRUE(results.is_array() && results.size() == 1u) << r.output;
+  EXPECT_EQ(results[0]["status"], "ok");
+}
+
 TEST(ResidualPolicy, OverAnotherEnvironmentIsAnErrorNamingTheFile) {
   const std::string file = here("policies/residual_of_another_environment.json");
   const Outcome r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + file);
