@@ -85,6 +85,8 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
   run.policy_path = o.out;
   run.resume = o.resume;
   run.command = commandLine(o);
+  run.pronk_version = PRONK_VERSION;
+  run.git_commit = PRONK_GIT_COMMIT;
 
   const TrainingSpec& t = *scenario.training;
   std::printf("training    %s\n", o.file.c_str());

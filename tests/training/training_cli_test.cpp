@@ -142,6 +142,8 @@ TEST(PronkTrain, TwoIterationsWriteAPolicyThatPronkRunTakes) {
   EXPECT_EQ(policy["provenance"]["seed"], 3);
   EXPECT_EQ(policy["provenance"]["robot"], "go1");
   EXPECT_EQ(policy["provenance"]["environment"], "jump");
+  EXPECT_TRUE(policy["provenance"]["git_commit"].is_string()) << policy["provenance"].dump();
+  EXPECT_EQ(policy["provenance"]["pronk_version"], PRONK_PROJECT_VERSION);
   EXPECT_EQ(policy["provenance"]["validation"]["iteration"], 2);
   EXPECT_EQ(policy["provenance"]["validation"]["count"], 3);
 

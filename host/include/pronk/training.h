@@ -64,6 +64,7 @@ struct TrainingRunOptions {
   std::string policy_path;
   std::string resume;                      // a checkpoint to continue from; "" = start afresh
   std::string command;                     // the command line, for the policy's provenance
+  std::string pronk_version, git_commit;   // the build's, for the policy's provenance ("" leaves them out)
 };
 
 // A jump set's landing figures (the report's judgement of each jump).

@@ -546,6 +546,8 @@ class Trainer {
                           ", trained by pronk train");
     json p;
     p["command"] = options_.command;
+    if (!options_.pronk_version.empty()) p["pronk_version"] = options_.pronk_version;
+    if (!options_.git_commit.empty()) p["git_commit"] = options_.git_commit;
     p["training_file"] = scenario_.file;
     p["seed"] = spec_.seed;
     p["iterations"] = done_;
