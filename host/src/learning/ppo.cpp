@@ -40,6 +40,22 @@ Eigen::MatrixXd columns(const Eigen::MatrixXd& m, const std::vector<Eigen::Index
 }
 Eigen::VectorXd entries(const Eigen::VectorXd& v, const std::vector<Eigen::Index>& indices) { return v(indices); }
 
+// One epoch's minibatches: the samples 0 .. n-1 shuffled (Fisher-Yates from
+// rng) and cut into `count` runs whose sizes differ by at most one.
+std::vector<std::vector<Eigen::Index>> shuffledMinibatches(Eigen::Index n, Eigen::Index count, Rng& rng) {
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng.below(i)]);
+  std::vector<std::vector<Eigen::Index>> out;
+  out.reserve(static_cast<std::size_t>(count));
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const std::size_t begin = static_cast<std::size_t>(n * k / count);
+    const std::size_t end = static_cast<std::size_t>(n * (k + 1) / count);
+    out.emplace_back(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
+  }
+  return out;
+}
+
 }  // namespace
 
 double adaptLearningRate(double learning_rate, double kl, const PpoConfig& config) {
@@ -153,16 +169,8 @@ PpoUpdateStats PpoLearner::update(const PpoBatch& batch) {
   PpoUpdateStats stats;
   stats.reward_mean = batch.rewards.mean();
   stats.value_mean = all.old_values.mean();
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
   for (int epoch = 0; epoch < config_.epochs; ++epoch) {
-    std::iota(order.begin(), order.end(), Eigen::Index{0});
-    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng_.below(i)]);  // Fisher-Yates
-    for (int k = 0; k < config_.minibatches; ++k) {
-      // Sizes differ by at most one when n does not divide evenly.
-      const std::size_t begin = static_cast<std::size_t>(n) * k / config_.minibatches;
-      const std::size_t end = static_cast<std::size_t>(n) * (k + 1) / config_.minibatches;
-      const std::vector<Eigen::Index> idx(order.begin() + static_cast<std::ptrdiff_t>(begin),
-                                          order.begin() + static_cast<std::ptrdiff_t>(end));
+    for (const std::vector<Eigen::Index>& idx : shuffledMinibatches(n, config_.minibatches, rng_)) {
       PpoMinibatch mb;
       mb.inputs = columns(all.inputs, idx);
       mb.actions = columns(all.actions, idx);
@@ -218,17 +226,10 @@ double PpoLearner::fitCritic(const Eigen::MatrixXd& observations, const Eigen::V
   checkFinite(observations, "observations");
   checkFinite(rewards, "rewards");
   const Eigen::MatrixXd inputs = scaling_.apply(observations);
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
   double last_epoch_loss = 0;
   for (int epoch = 0; epoch < epochs; ++epoch) {
-    std::iota(order.begin(), order.end(), Eigen::Index{0});
-    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng_.below(i)]);
     last_epoch_loss = 0;
-    for (int k = 0; k < config_.minibatches; ++k) {
-      const std::size_t begin = static_cast<std::size_t>(n) * k / config_.minibatches;
-      const std::size_t end = static_cast<std::size_t>(n) * (k + 1) / config_.minibatches;
-      const std::vector<Eigen::Index> idx(order.begin() + static_cast<std::ptrdiff_t>(begin),
-                                          order.begin() + static_cast<std::ptrdiff_t>(end));
+    for (const std::vector<Eigen::Index>& idx : shuffledMinibatches(n, config_.minibatches, rng_)) {
       const Eigen::MatrixXd x = columns(inputs, idx);
       const Eigen::VectorXd r = entries(rewards, idx);
       Mlp::Tape tape;
@@ -260,17 +261,10 @@ double PpoLearner::fitMean(const Eigen::MatrixXd& observations, const Eigen::Mat
   const Eigen::MatrixXd inputs = scaling_.apply(observations);
   const Eigen::Index batches = (n + minibatch_size - 1) / minibatch_size;
   const Eigen::VectorXd no_log_std_gradient = Eigen::VectorXd::Zero(actionSize());
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
   double last_epoch_loss = 0;
   for (int epoch = 0; epoch < epochs; ++epoch) {
-    std::iota(order.begin(), order.end(), Eigen::Index{0});
-    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng_.below(i)]);
     last_epoch_loss = 0;
-    for (Eigen::Index k = 0; k < batches; ++k) {
-      const std::size_t begin = static_cast<std::size_t>(n * k / batches);
-      const std::size_t end = static_cast<std::size_t>(n * (k + 1) / batches);
-      const std::vector<Eigen::Index> idx(order.begin() + static_cast<std::ptrdiff_t>(begin),
-                                          order.begin() + static_cast<std::ptrdiff_t>(end));
+    for (const std::vector<Eigen::Index>& idx : shuffledMinibatches(n, batches, rng_)) {
       Mlp::Tape tape;
       const Eigen::MatrixXd m = actor_.means(columns(inputs, idx), &tape);
       const Eigen::MatrixXd error = m - columns(actions, idx);

@@ -105,13 +105,15 @@ Eigen::MatrixXd drawNoise(Rng& rng, int rows, int cases) {
 // Landing figures of a jump set, as the report judges each jump.
 class FiguresSink {
  public:
-  void add(const EpisodeRecord& r) {
+  // The report's judgement of the jump, for the caller too (none for a case
+  // that could not be set up).
+  std::optional<JumpOutcome> add(const EpisodeRecord& r) {
     ++f_.jumps;
     if (r.setup_error) {
       ++f_.setup_errors;
-      return;
+      return std::nullopt;
     }
-    const JumpOutcome o = judgeJump(r);
+    JumpOutcome o = judgeJump(r);
     if (o.status == "failed") ++f_.failed;
     if (o.status == "rejected") ++f_.rejected;
     if (o.status == "ok" || o.status == "missed") {
@@ -119,6 +121,7 @@ class FiguresSink {
       errors_.push_back(o.landing.error_xy);
       if (o.landing.error_xy <= 0.2) ++within_;
     }
+    return o;
   }
   JumpSetFigures figures() const {
     JumpSetFigures f = f_;
@@ -318,11 +321,11 @@ class Trainer {
     const auto t0 = Clock::now();
     const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
       if (stopRequested()) pool_->stop();
-      sink.add(r);
+      const std::optional<JumpOutcome> outcome = sink.add(r);
       observations[r.index] = r.result.observation;
       rewards[static_cast<Eigen::Index>(r.index)] = r.result.reward;
-      if (spec_.hindsight && !r.setup_error) {
-        achieved[r.index] = hindsight::achievedTask(judgeJump(r), r.episode.target, spec_);
+      if (spec_.hindsight && outcome) {
+        achieved[r.index] = hindsight::achievedTask(*outcome, r.episode.target, spec_);
         taken[r.index] = r.result.action;
       }
     });
