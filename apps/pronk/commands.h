@@ -62,6 +62,7 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common);
 Subcommand declareRender(CLI::App& app, const CommonOptions& common);
 Subcommand declareBench(CLI::App& app, const CommonOptions& common);
 Subcommand declareTrain(CLI::App& app, const CommonOptions& common);
+Subcommand declareEval(CLI::App& app, const CommonOptions& common);
 
 struct RunOptions {
   std::string scenario;

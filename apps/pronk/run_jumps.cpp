@@ -5,7 +5,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "progress.h"
+#include "stop_signal.h"
 #include "pronk/controller_factory.h"
 #include "pronk/report.h"
 #include "render/declared_markers.h"
@@ -25,13 +25,6 @@ namespace pronk::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<int> g_signal{0};
-std::atomic<bool> g_stop{false};  // the pool's stop flag: no case is handed out once set
-extern "C" void onSignal(int signal) {
-  g_signal = signal;  // lock-free atomics: safe in a handler
-  g_stop = true;
-}
 
 // The files a jump run writes into --out: a new run replaces them as one set.
 bool isRunFile(const fs::path& p) {
@@ -124,7 +117,10 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   rollout.record_samples = options.trace || !video.path.empty();
   rollout.record_body_poses = !video.path.empty();
   if (options.full_episodes) rollout.end_at_rest = 0;
-  rollout.stop = &g_stop;
+  // SIGINT / SIGTERM: the running jumps finish, then the summary and the files
+  // of every finished jump are written (exit 130 / 143).
+  const StopOnSignal stop;
+  rollout.stop = stop.flag();
   const std::string factory_name = setup.factory->name, origin = setup.origin;
   const EnvironmentSchema schema = setup.schema;
   RolloutPool pool(std::move(setup), rollout);
@@ -144,12 +140,6 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);
   const auto start = std::chrono::steady_clock::now();
   auto last_write = start;
-  // SIGINT / SIGTERM: the running jumps finish, then the summary and the files
-  // of every finished jump are written (exit 130 / 143).
-  g_signal = 0;
-  g_stop = false;
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
   pool.run(cases, [&](EpisodeRecord& r) {
     const JumpOutcome outcome = judgeJump(r);
     printJumpRow(stdout, r, outcome, schema);
@@ -192,11 +182,9 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
       last_write = now;
     }
   });
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
-  if (g_signal) {
+  if (stop.signal()) {
     std::fprintf(stderr, "pronk: stopped by signal %d after %zu of %zu jump(s); writing what finished\n",
-                 g_signal.load(), stats.jumps, cases.size());
+                 stop.signal(), stats.jumps, cases.size());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printJumpSummary(stdout, stats, wall);
@@ -213,7 +201,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
                 v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
   }
-  if (g_signal) return 128 + g_signal;
+  if (stop.signal()) return 128 + stop.signal();
   return stats.failed + stats.rejected + stats.missed > 0 ? kEpisodeFailed : kOk;
 }
 

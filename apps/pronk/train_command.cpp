@@ -4,7 +4,7 @@
 // SIGINT / SIGTERM turned into a checkpoint.
 #include <atomic>
 #include <cmath>
-#include <csignal>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -13,13 +13,10 @@
 #include "pronk/controller_factory.h"
 #include "pronk/training.h"
 #include "run_jumps.h"
+#include "stop_signal.h"
 
 namespace pronk::cli {
 namespace {
-
-std::atomic<bool> g_stop_requested{false};
-
-extern "C" void requestStop(int) { g_stop_requested = true; }
 
 struct TrainOptions {
   std::string file;
@@ -100,12 +97,14 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
               o.resume.empty() ? "" : (", resuming " + o.resume).c_str());
   std::fflush(stdout);
 
-  g_stop_requested = false;
-  std::signal(SIGINT, requestStop);
-  std::signal(SIGTERM, requestStop);
-  const TrainingOutcome outcome = trainPolicy(scenario, registry, run, printRow, &g_stop_requested);
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  std::optional<TrainingOutcome> outcome_or;
+  int stop_signal = 0;
+  {
+    const StopOnSignal stop;
+    outcome_or = trainPolicy(scenario, registry, run, printRow, stop.flag());
+    stop_signal = stop.signal();
+  }
+  const TrainingOutcome& outcome = *outcome_or;
 
   if (outcome.interrupted) {
     std::printf("stopped after iteration %d (%lld jumps, %s); continue with --resume %s\n", outcome.iterations_done,
@@ -116,7 +115,7 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
   }
   std::printf("wrote %s, %s, %s\n", outcome.policy_path.c_str(), outcome.checkpoint_path.c_str(),
               outcome.log_path.c_str());
-  return kOk;
+  return outcome.interrupted && stop_signal ? 128 + stop_signal : kOk;
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ void expectSameRecords(const std::vector<EpisodeRecord>& a, const std::vector<Ep
   for (size_t i = 0; i < a.size(); ++i) {
     SCOPED_TRACE("case " + std::to_string(i));
     const EnvironmentEpisodeResult &x = a[i].result, &y = b[i].result;
-    EXPECT_EQ(a[i].index, i);
+    EXPECT_EQ(a[i].index, b[i].index);
     EXPECT_EQ(x.observation, y.observation);
     EXPECT_EQ(x.action, y.action);
     EXPECT_TRUE(same(x.reward, y.reward)) << x.reward << " " << y.reward;
@@ -105,6 +105,26 @@ TEST_F(Rollout, ThreadCountsChangeNoRecordAndWorldsAreReused) {
   EXPECT_GT(landed, 0);
   EXPECT_GT(rejected, 0);
   EXPECT_GT(failed, 0);
+}
+
+TEST_F(Rollout, ChosenCasesGetWhatAWholeRunGivesThemInTheOrderAsked) {
+  // What a resumed evaluation relies on: case k of a partial run is case k of
+  // the whole run (its index, its seed), whatever else runs beside it.
+  RolloutOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const std::vector<EpisodeCase> cases = sweepCases(scenario_, "mix");
+  ASSERT_GE(cases.size(), 5u);
+  RolloutPool a(setup(), one), b(setup(), two);
+  std::vector<EpisodeRecord> whole, part;
+  a.run(cases, [&](EpisodeRecord& r) { whole.push_back(std::move(r)); });
+  const std::vector<size_t> which = {4, 1, 3};
+  EXPECT_EQ(b.run(cases, which, [&](EpisodeRecord& r) { part.push_back(std::move(r)); }), 3u);
+  std::vector<EpisodeRecord> expected;
+  for (size_t i : which) expected.push_back(whole[i]);
+  expectSameRecords(expected, part);
+  EXPECT_EQ(part[0].index, 4u);
+  EXPECT_THROW(b.run(cases, {cases.size()}, [](EpisodeRecord&) {}), Error);
 }
 
 TEST_F(Rollout, EndingAtRestMovesNoLandingByMoreThanTwoMillimetres) {

@@ -86,6 +86,11 @@ class RolloutPool {
   // after the running episodes and is rethrown. Returns the number of records
   // delivered (fewer than cases.size() only after stop()).
   size_t run(const std::vector<EpisodeCase>& cases, const EpisodeSink& sink);
+  // The same for the cases `which` names (indices into `cases`, each the
+  // record's index and seed, as in a whole run), delivered in the order of
+  // `which`: a resumed evaluation runs what is left and gets what a whole run
+  // would have given for those cases.
+  size_t run(const std::vector<EpisodeCase>& cases, const std::vector<size_t>& which, const EpisodeSink& sink);
   // The environment's prior_action for each task, each from an environment
   // reset with that task on the base scenario's start pose (its own World,
   // built once; nothing is simulated), on the calling thread: what an

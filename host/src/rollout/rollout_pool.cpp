@@ -77,36 +77,45 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
 }
 
 size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const EpisodeSink& sink) {
+  std::vector<size_t> all(cases.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return run(cases, all, sink);
+}
+
+size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const std::vector<size_t>& which,
+                        const EpisodeSink& sink) {
+  for (size_t i : which)
+    if (i >= cases.size()) throw Error("RolloutPool::run: case index " + std::to_string(i) + " out of range");
   stop_ = false;
   std::mutex mutex;
   std::condition_variable ready;
   std::map<size_t, EpisodeRecord> finished;   // out of order, until their turn
   std::map<size_t, std::exception_ptr> errors;
   size_t next_case = 0;
-  const size_t threads = std::min(workers_.size(), std::max<size_t>(cases.size(), 1));
+  const size_t threads = std::min(workers_.size(), std::max<size_t>(which.size(), 1));
 
   auto work = [&](Worker& worker) {
     for (;;) {
-      size_t index;
+      size_t position;  // in `which`
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (stop_ || (options_.stop && *options_.stop) || next_case >= cases.size()) {
-          if (next_case < cases.size()) stop_ = true;
+        if (stop_ || (options_.stop && *options_.stop) || next_case >= which.size()) {
+          if (next_case < which.size()) stop_ = true;
           ready.notify_all();  // the delivering thread may be waiting for a case nobody will run
           return;
         }
-        index = next_case++;
+        position = next_case++;
       }
       try {
-        EpisodeRecord record = runCase(worker, index, cases[index]);
+        EpisodeRecord record = runCase(worker, which[position], cases[which[position]]);
         std::lock_guard<std::mutex> lock(mutex);
-        finished.emplace(index, std::move(record));
+        finished.emplace(position, std::move(record));
       } catch (...) {
         // A broken world (an exception out of the simulation itself) is not
         // reused; the error reaches the caller in case order.
         worker.world.reset();
         std::lock_guard<std::mutex> lock(mutex);
-        errors.emplace(index, std::current_exception());
+        errors.emplace(position, std::current_exception());
       }
       ready.notify_all();
     }
@@ -118,7 +127,7 @@ size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const EpisodeSink
   for (size_t w = 0; w < threads; ++w) pool.emplace_back(work, std::ref(*workers_[w]));
   std::exception_ptr failure;
   size_t delivered = 0;
-  for (; delivered < cases.size(); ++delivered) {
+  for (; delivered < which.size(); ++delivered) {
     EpisodeRecord record;
     {
       std::unique_lock<std::mutex> lock(mutex);
@@ -146,7 +155,7 @@ size_t RolloutPool::run(const std::vector<EpisodeCase>& cases, const EpisodeSink
   }
   {
     std::lock_guard<std::mutex> lock(mutex);
-    stop_ = stop_ || delivered < cases.size();
+    stop_ = stop_ || delivered < which.size();
   }
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);

@@ -1,0 +1,241 @@
+// `pronk eval FILE... --policy POLICY|ballistic`: every target set and sweep of
+// the files through the rollout engine; per set a summary counted as the
+// paper counts, the jump log (resumable), the per-jump CSV and the figures;
+// summary.json over all sets (docs/evaluation.md).
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "commands.h"
+#include "progress.h"
+#include "pronk/controller_factory.h"
+#include "pronk/evaluation.h"
+#include "pronk/file_io.h"
+#include "pronk/report.h"
+#include "pronk/rollout.h"
+#include "render/plot/evaluation_plots.h"
+#include "run_jumps.h"
+#include "stop_signal.h"
+
+namespace pronk::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct EvalOptions {
+  std::vector<std::string> files;
+  std::string policy;               // "" = each file's <environment policy>
+  std::vector<std::string> sweeps;  // only these sets ("targets" = the <targets>); empty = all
+  std::string out_dir = "pronk-eval";
+  bool resume = false;
+  bool plots = true;
+  double radius = 0.2;
+  int jobs = 0;
+};
+
+// One set to run: a file's <targets> ("targets") or one of its sweeps.
+struct SetToRun {
+  std::string file;
+  Scenario scenario;
+  std::string set;   // "targets" or the sweep's name
+  std::string name;  // its directory under --out: <file stem>-<set>
+};
+
+std::vector<SetToRun> setsOf(const EvalOptions& o) {
+  std::vector<SetToRun> out;
+  for (const std::string& file : o.files) {
+    Scenario s = loadScenario(file);
+    if (!s.environment) throw InputError({file, 0}, "pronk eval needs an <environment> (the jumps' environment)");
+    std::vector<std::string> sets;
+    if (!s.targets.empty()) sets.push_back("targets");
+    for (const SweepSpec& sweep : s.sweeps) sets.push_back(sweep.name);
+    if (!o.sweeps.empty()) {
+      std::vector<std::string> chosen;
+      for (const std::string& want : o.sweeps)
+        if (std::find(sets.begin(), sets.end(), want) != sets.end()) chosen.push_back(want);
+      sets = chosen;
+    }
+    if (sets.empty()) {
+      throw InputError({file, 0}, o.sweeps.empty() ? "no <targets> and no <sweeps>: nothing to evaluate"
+                                                   : "none of the --sweep sets is in this file");
+    }
+    const std::string stem = fs::path(file).stem().string();
+    for (const std::string& set : sets) {
+      std::string name = stem + "-" + set;
+      for (const SetToRun& other : out)
+        if (other.name == name) name += "-" + std::to_string(out.size());  // two files of one stem
+      out.push_back({file, s, set, name});
+    }
+  }
+  return out;
+}
+
+std::string policyLabel(const std::string& policy) {
+  return policy == "ballistic" ? policy : fs::path(policy).stem().string();
+}
+
+struct SetResult {
+  std::string name, file, set;
+  SetSummary summary;
+  std::vector<std::string> plots;
+  bool complete = false;
+  std::string error;  // the set could not run or be plotted: it fails alone
+};
+
+void printSummaryTable(const std::vector<SetResult>& results, double radius) {
+  std::printf("\n| set | jumps | within %.2g m | mean cm | median cm | p90 cm | failed | refused | yaw mean/max deg | standing |\n",
+              radius);
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const SetResult& r : results) {
+    const SetSummary& s = r.summary;
+    if (!r.error.empty()) {
+      std::printf("| %s | %zu | error: %s |\n", r.name.c_str(), s.jumps, r.error.c_str());
+      continue;
+    }
+    std::printf("| %s%s | %zu | %.1f %% | %.1f | %.1f | %.1f | %zu (%.1f %%) | %zu (%.1f %%) | %.1f / %.1f | %zu |\n",
+                r.name.c_str(), r.complete ? "" : " (unfinished)", s.jumps, 100 * s.withinShare(), 100 * s.mean,
+                100 * s.median, 100 * s.p90, s.failed, s.jumps ? 100.0 * s.failed / s.jumps : 0.0, s.rejected,
+                s.jumps ? 100.0 * s.rejected / s.jumps : 0.0, s.yaw_mean_deg, s.yaw_max_deg, s.standing);
+  }
+}
+
+void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
+  nlohmann::json sets = nlohmann::json::array();
+  for (const SetResult& r : results) {
+    nlohmann::json j = {{"set", r.name}, {"file", r.file}, {"sweep", r.set}, {"complete", r.complete},
+                        {"summary", toJson(r.summary)}, {"plots", nlohmann::json::array()}};
+    for (const std::string& p : r.plots) j["plots"].push_back(fs::path(p).lexically_relative(o.out_dir).string());
+    if (!r.error.empty()) j["error"] = r.error;
+    sets.push_back(j);
+  }
+  const nlohmann::json summary = {{"pronk_version", PRONK_VERSION}, {"git_commit", PRONK_GIT_COMMIT},
+                                  {"policy", o.policy.empty() ? "(each file's)" : o.policy}, {"sets", sets}};
+  replaceFileAtomically((fs::path(o.out_dir) / "summary.json").string(), summary.dump(2) + "\n", "summary file");
+}
+
+SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToRun& set, const StopOnSignal& stop) {
+  SetResult result{set.name, set.file, set.set, {}, {}, false, ""};
+  const EnvironmentSpec& spec = *set.scenario.environment;
+  const std::string policy = o.policy.empty() ? spec.policy : o.policy;
+  if (policy.empty()) {
+    throw InputError(spec.where, "<environment>: no policy: give --policy ballistic or --policy FILE");
+  }
+  PluginRegistry registry;
+  ControllerSpec as_controller{spec.factory, spec.plugin, spec.params, spec.where};
+  loadPlugins(registry, common.plugin_paths, &as_controller);
+  RolloutSetup setup = environmentSetup(set.scenario, registry, {}, policy);
+  const std::vector<EpisodeCase> cases =
+      set.set == "targets" ? targetCases(set.scenario) : sweepCases(set.scenario, set.set);
+  const nlohmann::json manifest = {{"file", fs::absolute(set.file).lexically_normal().string()},
+                                   {"set", set.set},
+                                   {"policy", policy == "ballistic" ? policy : fs::absolute(policy).string()},
+                                   {"policy_fingerprint", policy == "ballistic" ? "" : fileFingerprint(policy)},
+                                   {"cases", cases.size()},
+                                   {"cases_fingerprint", casesFingerprint(cases)}};
+  EvaluationSetDir dir((fs::path(o.out_dir) / set.name).string(), manifest, o.resume);
+  const std::vector<size_t> todo = dir.remaining(cases.size());
+
+  RolloutOptions rollout;
+  rollout.threads = std::min<int>(jobsOf(o.jobs), static_cast<int>(std::max<size_t>(todo.size(), 1)));
+  rollout.stop = stop.flag();
+  const std::string robot = set.scenario.platform.name;
+  RolloutPool pool(std::move(setup), rollout);
+  for (const std::string& w : pool.robot().warnings) std::cerr << "warning: " << w << "\n";
+  std::printf("set %s: %s, policy %s, %zu jump(s)", set.name.c_str(), set.file.c_str(), policy.c_str(), cases.size());
+  if (todo.size() < cases.size()) std::printf(", %zu done before (--resume)", cases.size() - todo.size());
+  std::printf(", %d thread(s)\n", pool.threads());
+  std::fflush(stdout);
+
+  Progress progress("jump", todo.size());
+  size_t finished = 0;
+  if (!todo.empty()) {
+    pool.run(cases, todo, [&](EpisodeRecord& r) {
+      dir.log().append(jumpRowOf(r, judgeJump(r)));
+      progress.done(++finished);
+    });
+  }
+  std::vector<JumpRow> rows = dir.log().rows();
+  std::sort(rows.begin(), rows.end(), [](const JumpRow& a, const JumpRow& b) { return a.index < b.index; });
+  result.summary = summarize(rows, o.radius);
+  result.complete = rows.size() == cases.size();
+  writeJumpsCsv(rows, (fs::path(dir.dir()) / "jumps.csv").string());
+  const SetSummary& s = result.summary;
+  std::printf("  %zu jump(s): %.1f %% within %.2g m; landed %zu: mean %.1f cm, median %.1f cm, p90 %.1f cm; "
+              "%zu failed, %zu refused; yaw error mean %.1f deg, max %.1f deg\n",
+              s.jumps, 100 * s.withinShare(), o.radius, s.landed, 100 * s.mean, 100 * s.median, 100 * s.p90, s.failed,
+              s.rejected, s.yaw_mean_deg, s.yaw_max_deg);
+  if (o.plots && result.complete) {
+    render::plot::PlotContext context{robot.empty() ? pool.robot().name : robot, policyLabel(policy),
+                                      fs::path(set.file).stem().string() + " / " + set.set, o.radius};
+    result.plots = render::plot::plotEvaluationSet(rows, context, dir.dir());
+    for (const std::string& p : result.plots) std::printf("  plot %s\n", p.c_str());
+  }
+  return result;
+}
+
+int runEval(const CommonOptions& common, const EvalOptions& o) {
+  // Every file is read and checked before any jump runs.
+  const std::vector<SetToRun> sets = setsOf(o);
+  std::error_code ec;
+  if (!o.resume && fs::exists(fs::path(o.out_dir) / "summary.json", ec)) {
+    throw Error("--out " + o.out_dir + ": holds an earlier evaluation (summary.json): give --resume, or another --out");
+  }
+  fs::create_directories(o.out_dir, ec);
+  if (ec) throw Error("--out " + o.out_dir + ": cannot create the directory: " + ec.message());
+
+  const StopOnSignal stop;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<SetResult> results;
+  bool errors = false;
+  for (const SetToRun& set : sets) {
+    if (stop.stopped()) break;
+    try {
+      results.push_back(runSet(common, o, set, stop));
+    } catch (const Error& e) {
+      // The set fails alone, with its reason; the others run.
+      std::fprintf(stderr, "pronk eval: set %s: %s\n", set.name.c_str(), e.what());
+      SetResult failed{set.name, set.file, set.set, {}, {}, false, e.what()};
+      results.push_back(failed);
+      errors = true;
+    }
+    writeSummary(o, results);
+  }
+  printSummaryTable(results, o.radius);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  size_t jumps = 0;
+  for (const SetResult& r : results) jumps += r.summary.jumps;
+  std::printf("\n%zu set(s), %zu jump(s) in %.1f s; wrote %s\n", results.size(), jumps, wall,
+              (fs::path(o.out_dir) / "summary.json").c_str());
+  if (stop.signal()) {
+    std::fprintf(stderr, "pronk eval: stopped by signal %d; every finished jump is in its set's jumps.jsonl: "
+                         "--resume continues\n", stop.signal());
+    return 128 + stop.signal();
+  }
+  return errors ? kInputError : kOk;
+}
+
+}  // namespace
+
+Subcommand declareEval(CLI::App& app, const CommonOptions& common) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "eval", "Evaluate a policy over every target set and sweep of scenario files: summaries as the paper counts, "
+              "per-jump CSV, figures (docs/evaluation.md)");
+  cmd->add_option("files", options->files, "scenario files")->required()->check(kNonEmpty);
+  cmd->add_option("--policy", options->policy, "ballistic (the planner) or a policy file; default: each file's "
+                                                "<environment policy>")
+      ->check(kNonEmpty);
+  cmd->add_option("--sweep", options->sweeps, "only these sets: a sweep's name, or 'targets' (repeatable)")
+      ->check(kNonEmpty);
+  cmd->add_option("--out", options->out_dir, "output directory")->check(kNonEmpty)->capture_default_str();
+  cmd->add_flag("--resume", options->resume, "continue the evaluation in --out: only the jumps not yet done run");
+  cmd->add_flag("!--no-plots", options->plots, "write no figures");
+  cmd->add_option("--radius", options->radius, "accuracy threshold for the shares and the contour, m")
+      ->check(finiteIn(0, 100, true))
+      ->capture_default_str();
+  cmd->add_option("--jobs,-j", options->jobs, "worker threads (0 = one per core)")->check(CLI::Range(0, 1024));
+  return {cmd, [&common, options] { return runEval(common, *options); }};
+}
+
+}  // namespace pronk::cli

@@ -1,0 +1,131 @@
+// `pronk eval`: every set of a file through the command a user runs; the
+// summary, the per-jump CSV and the figures; an earlier evaluation is never
+// overwritten; --resume runs only what is left and ends where a whole run ends.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pronk_command.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using pronk_test::pronk;
+
+const std::string kSmall = pronk_test::cliScenario("go1_eval_small.xml");
+
+std::string outDir(const std::string& name) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/" + name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+nlohmann::json summary(const std::string& dir) {
+  const std::string text = readFile(dir + "/summary.json");
+  return text.empty() ? nlohmann::json() : nlohmann::json::parse(text);
+}
+
+std::vector<std::string> lines(const std::string& path) {
+  std::vector<std::string> out;
+  std::istringstream in(readFile(path));
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// A jumps.csv line without its wall_s field (the 16th), which no two runs share.
+std::string withoutWallTime(const std::string& line) {
+  size_t start = 0;
+  for (int field = 0; field < 15; ++field) start = line.find(',', start) + 1;
+  return line.substr(0, start) + line.substr(line.find(',', start) + 1);
+}
+
+TEST(PronkEval, RunsEverySetAndWritesItsSummaryJumpsAndFigures) {
+  const std::string out = outDir("eval_all");
+  const pronk_test::Outcome r = pronk("eval " + kSmall + " --policy ballistic --jobs 2 --out " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json s = summary(out);
+  ASSERT_TRUE(s.contains("sets")) << r.output;
+  ASSERT_EQ(s["sets"].size(), 2u);
+  const nlohmann::json& targets = s["sets"][0];
+  const nlohmann::json& ahead = s["sets"][1];
+  EXPECT_EQ(targets["set"], "go1_eval_small-targets");
+  EXPECT_EQ(ahead["set"], "go1_eval_small-ahead");
+  EXPECT_EQ(targets["summary"]["jumps"], 2);
+  EXPECT_EQ(ahead["summary"]["jumps"], 12);
+  EXPECT_TRUE(ahead["complete"].get<bool>());
+  // Short jumps ahead: the planner lands every one within 0.2 m.
+  EXPECT_EQ(ahead["summary"]["within_radius_share"].get<double>(), 1.0) << ahead.dump(2);
+  EXPECT_LT(ahead["summary"]["error_m"]["median"].get<double>(), 0.05);
+  EXPECT_EQ(ahead["plots"], nlohmann::json::array({"go1_eval_small-ahead/distance.png"}));
+  EXPECT_TRUE(fs::file_size(out + "/go1_eval_small-ahead/distance.png") > 1000);
+  EXPECT_TRUE(fs::exists(out + "/go1_eval_small-ahead/distance.gp"));
+  EXPECT_EQ(lines(out + "/go1_eval_small-ahead/jumps.csv").size(), 13u);
+  EXPECT_EQ(lines(out + "/go1_eval_small-ahead/jumps.jsonl").size(), 12u);
+  EXPECT_NE(r.output.find("| go1_eval_small-ahead | 12 | 100.0 % |"), std::string::npos) << r.output;
+}
+
+TEST(PronkEval, NeverOverwritesAnEarlierEvaluation) {
+  const std::string out = outDir("eval_twice");
+  ASSERT_EQ(pronk("eval " + kSmall + " --sweep targets --policy ballistic --out " + out).status, 0);
+  const std::string before = readFile(out + "/go1_eval_small-targets/jumps.jsonl");
+  const pronk_test::Outcome again = pronk("eval " + kSmall + " --sweep targets --policy ballistic --out " + out);
+  EXPECT_EQ(again.status, 3) << again.output;
+  EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
+  EXPECT_EQ(readFile(out + "/go1_eval_small-targets/jumps.jsonl"), before);
+  // A resume with another policy is refused by the set's manifest.
+  fs::remove(out + "/summary.json");
+  const pronk_test::Outcome other = pronk("eval " + kSmall + " --sweep targets --resume --out " + out + " --policy " +
+                                          pronk_test::source("assets/policies/go1_flat_aim.json"));
+  EXPECT_EQ(other.status, 3) << other.output;
+  EXPECT_NE(other.output.find("set.json: written for policy \"ballistic\""), std::string::npos) << other.output;
+  EXPECT_EQ(readFile(out + "/go1_eval_small-targets/jumps.jsonl"), before);
+}
+
+TEST(PronkEval, AResumedRunDoesOnlyWhatIsLeftAndEndsAsAWholeRun) {
+  const std::string whole = outDir("eval_whole"), cut = outDir("eval_cut");
+  ASSERT_EQ(pronk("eval " + kSmall + " --sweep ahead --no-plots --policy ballistic --out " + whole).status, 0);
+  // The state an interrupted run leaves: five finished jumps and a torn line.
+  ASSERT_EQ(pronk("eval " + kSmall + " --sweep ahead --no-plots --policy ballistic --out " + cut).status, 0);
+  const std::vector<std::string> log = lines(cut + "/go1_eval_small-ahead/jumps.jsonl");
+  {
+    std::ofstream rewrite(cut + "/go1_eval_small-ahead/jumps.jsonl", std::ios::trunc);
+    for (int i = 0; i < 5; ++i) rewrite << log[i] << "\n";
+    rewrite << log[5].substr(0, 40);
+  }
+  fs::remove(cut + "/summary.json");
+  fs::remove(cut + "/go1_eval_small-ahead/jumps.csv");
+  const pronk_test::Outcome resumed =
+      pronk("eval " + kSmall + " --sweep ahead --no-plots --policy ballistic --resume --out " + cut);
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("12 jump(s), 5 done before (--resume)"), std::string::npos) << resumed.output;
+  const std::vector<std::string> a = lines(whole + "/go1_eval_small-ahead/jumps.csv");
+  const std::vector<std::string> b = lines(cut + "/go1_eval_small-ahead/jumps.csv");
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 1; i < a.size(); ++i) EXPECT_EQ(withoutWallTime(a[i]), withoutWallTime(b[i])) << i;
+  EXPECT_EQ(summary(whole)["sets"][0]["summary"]["error_m"], summary(cut)["sets"][0]["summary"]["error_m"]);
+}
+
+TEST(PronkEval, BadInputIsNamedBeforeAnyJumpRuns) {
+  const std::string out = outDir("eval_bad");
+  const pronk_test::Outcome sweep = pronk("eval " + kSmall + " --sweep nowhere --policy ballistic --out " + out);
+  EXPECT_EQ(sweep.status, 3) << sweep.output;
+  EXPECT_NE(sweep.output.find(kSmall), std::string::npos) << sweep.output;
+  EXPECT_FALSE(fs::exists(out));
+  const pronk_test::Outcome radius = pronk("eval " + kSmall + " --radius nan --out " + out);
+  EXPECT_EQ(radius.status, 2) << radius.output;
+  EXPECT_NE(radius.output.find("--radius"), std::string::npos) << radius.output;
+}
+
+}  // namespace
