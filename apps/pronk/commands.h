@@ -63,6 +63,7 @@ Subcommand declareRender(CLI::App& app, const CommonOptions& common);
 Subcommand declareBench(CLI::App& app, const CommonOptions& common);
 Subcommand declareTrain(CLI::App& app, const CommonOptions& common);
 Subcommand declareEval(CLI::App& app, const CommonOptions& common);
+Subcommand declareCheck(CLI::App& app, const CommonOptions& common);
 
 struct RunOptions {
   std::string scenario;

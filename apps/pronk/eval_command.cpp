@@ -9,12 +9,12 @@
 
 #include "commands.h"
 #include "progress.h"
-#include "pronk/controller_factory.h"
 #include "pronk/evaluation.h"
 #include "pronk/file_io.h"
 #include "pronk/report.h"
 #include "pronk/rollout.h"
 #include "render/plot/evaluation_plots.h"
+#include "evaluation_sets.h"
 #include "run_jumps.h"
 #include "stop_signal.h"
 
@@ -34,40 +34,9 @@ struct EvalOptions {
   int jobs = 0;
 };
 
-// One set to run: a file's <targets> ("targets") or one of its sweeps.
-struct SetToRun {
-  std::string file;
-  Scenario scenario;
-  std::string set;   // "targets" or the sweep's name
-  std::string name;  // its directory under --out: <file stem>-<set>
-};
-
 std::vector<SetToRun> setsOf(const EvalOptions& o) {
   std::vector<SetToRun> out;
-  for (const std::string& file : o.files) {
-    Scenario s = loadScenario(file);
-    if (!s.environment) throw InputError({file, 0}, "pronk eval needs an <environment> (the jumps' environment)");
-    std::vector<std::string> sets;
-    if (!s.targets.empty()) sets.push_back("targets");
-    for (const SweepSpec& sweep : s.sweeps) sets.push_back(sweep.name);
-    if (!o.sweeps.empty()) {
-      std::vector<std::string> chosen;
-      for (const std::string& want : o.sweeps)
-        if (std::find(sets.begin(), sets.end(), want) != sets.end()) chosen.push_back(want);
-      sets = chosen;
-    }
-    if (sets.empty()) {
-      throw InputError({file, 0}, o.sweeps.empty() ? "no <targets> and no <sweeps>: nothing to evaluate"
-                                                   : "none of the --sweep sets is in this file");
-    }
-    const std::string stem = fs::path(file).stem().string();
-    for (const std::string& set : sets) {
-      std::string name = stem + "-" + set;
-      for (const SetToRun& other : out)
-        if (other.name == name) name += "-" + std::to_string(out.size());  // two files of one stem
-      out.push_back({file, s, set, name});
-    }
-  }
+  for (const std::string& file : o.files) addSets(out, file, loadScenario(file), o.sweeps);
   return out;
 }
 
@@ -116,17 +85,10 @@ void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
 
 SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToRun& set, const StopOnSignal& stop) {
   SetResult result{set.name, set.file, set.set, {}, {}, false, ""};
-  const EnvironmentSpec& spec = *set.scenario.environment;
-  const std::string policy = o.policy.empty() ? spec.policy : o.policy;
-  if (policy.empty()) {
-    throw InputError(spec.where, "<environment>: no policy: give --policy ballistic or --policy FILE");
-  }
-  PluginRegistry registry;
-  ControllerSpec as_controller{spec.factory, spec.plugin, spec.params, spec.where};
-  loadPlugins(registry, common.plugin_paths, &as_controller);
-  RolloutSetup setup = environmentSetup(set.scenario, registry, {}, policy);
-  const std::vector<EpisodeCase> cases =
-      set.set == "targets" ? targetCases(set.scenario) : sweepCases(set.scenario, set.set);
+  const std::unique_ptr<SetRollout> run = prepareSet(common, set, o.policy, o.jobs, stop.flag());
+  const std::string& policy = run->policy;
+  const std::vector<EpisodeCase>& cases = run->cases;
+  RolloutPool& pool = *run->pool;
   const nlohmann::json manifest = {{"file", fs::absolute(set.file).lexically_normal().string()},
                                    {"set", set.set},
                                    {"policy", policy == "ballistic" ? policy : fs::absolute(policy).string()},
@@ -136,12 +98,7 @@ SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToR
   EvaluationSetDir dir((fs::path(o.out_dir) / set.name).string(), manifest, o.resume);
   const std::vector<size_t> todo = dir.remaining(cases.size());
 
-  RolloutOptions rollout;
-  rollout.threads = std::min<int>(jobsOf(o.jobs), static_cast<int>(std::max<size_t>(todo.size(), 1)));
-  rollout.stop = stop.flag();
   const std::string robot = set.scenario.platform.name;
-  RolloutPool pool(std::move(setup), rollout);
-  for (const std::string& w : pool.robot().warnings) std::cerr << "warning: " << w << "\n";
   std::printf("set %s: %s, policy %s, %zu jump(s)", set.name.c_str(), set.file.c_str(), policy.c_str(), cases.size());
   if (todo.size() < cases.size()) std::printf(", %zu done before (--resume)", cases.size() - todo.size());
   std::printf(", %d thread(s)\n", pool.threads());

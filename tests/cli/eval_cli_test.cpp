@@ -129,3 +129,40 @@ TEST(PronkEval, BadInputIsNamedBeforeAnyJumpRuns) {
 }
 
 }  // namespace
+
+namespace {
+
+// `pronk check`: each <expect> bound is one result, a miss names its line and
+// makes the exit status 4, and the JUnit report has one test case per bound.
+TEST(PronkCheck, AMissNamesItsLineAndFailsTheRunWithAJUnitCasePerBound) {
+  const std::string out = outDir("check_small");
+  fs::create_directories(out);
+  const std::string file = pronk_test::cliScenario("go1_check_small.xml");
+  const pronk_test::Outcome r = pronk("check " + file + " --policy ballistic --junit " + out + "/report.xml");
+  EXPECT_EQ(r.status, 4) << r.output;
+  EXPECT_NE(r.output.find("ok   " + file + ":11: target forward: max_error <= 5.0 cm"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("MISS " + file + ":13: target left: max_error <= 0.1 cm: worst"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("6 expectation(s): 5 held, 1 missed"), std::string::npos) << r.output;
+  const std::string junit = readFile(out + "/report.xml");
+  EXPECT_NE(junit.find("<testsuites name=\"pronk check\" tests=\"6\" failures=\"1\">"), std::string::npos) << junit;
+  size_t cases = 0, failures = 0;
+  for (size_t at = junit.find("<testcase "); at != std::string::npos; at = junit.find("<testcase ", at + 1)) ++cases;
+  for (size_t at = junit.find("<failure "); at != std::string::npos; at = junit.find("<failure ", at + 1)) ++failures;
+  EXPECT_EQ(cases, 6u);
+  EXPECT_EQ(failures, 1u);
+}
+
+TEST(PronkCheck, ExitsZeroWhenEveryBoundHolds) {
+  const pronk_test::Outcome r = pronk("check " + pronk_test::cliScenario("go1_check_pass.xml") + " --policy ballistic");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("2 expectation(s): 2 held, 0 missed"), std::string::npos) << r.output;
+}
+
+TEST(PronkCheck, AFileWithoutExpectationsIsAnError) {
+  const pronk_test::Outcome r = pronk("check " + kSmall + " --policy ballistic");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find("no <expectations>"), std::string::npos) << r.output;
+}
+
+}  // namespace

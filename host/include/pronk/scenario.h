@@ -234,6 +234,22 @@ struct TrainingSpec {
   SourceLocation where;
 };
 
+// <expectations>: what `pronk check` requires of a set's jumps (docs/scenario-format.md).
+// Each bound set becomes one check, reported (and in JUnit, one test case) on its own.
+struct ExpectSpec {
+  std::string set;     // "targets" or a sweep's name; "" when `target` is set
+  std::string target;  // one target of <targets> by name; "" for a whole set
+  std::optional<double> max_error;         // m: every jump lands within it (a failure or refusal misses)
+  std::optional<double> max_yaw_error;     // rad: every jump lands with |yaw error| within it
+  std::optional<double> within, share;     // m, 0..1: at least `share` of the jumps land within `within`
+  std::optional<double> max_mean_error;    // m, over the landed jumps
+  std::optional<double> max_median_error;  // m, over the landed jumps
+  std::optional<double> max_failed;        // 0..1: share of the jumps that fail
+  std::optional<double> max_rejected;      // 0..1: share refused by the safety filter
+  bool standing = false;                   // every jump lands and ends standing
+  SourceLocation where;
+};
+
 struct Scenario {
   std::string file;              // absolute path of the top-level file
   std::string name;
@@ -252,6 +268,7 @@ struct Scenario {
   std::vector<SweepSpec> sweeps;
   std::optional<RenderSpec> render;
   std::optional<TrainingSpec> training;        // `pronk train`; needs an <environment>
+  std::vector<ExpectSpec> expectations;        // `pronk check`; needs an <environment>
 };
 
 // The names the format accepts, kept here and nowhere else (the scenario reader

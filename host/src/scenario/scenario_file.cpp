@@ -159,7 +159,7 @@ void Loader::readRoot(const XMLElement& root, SourceFile& file, bool top) {
   r.rejectUnknownAttributes();
   const auto kids =
       r.children({"include", "platform", "controller", "environment", "sim", "terrain", "targets", "sweeps", "render",
-                  "training"});
+                  "training", "expectations"});
   for (const XMLElement* k : kids) {
     if (std::string(k->Name()) == "include") {
       include(*k, file);
@@ -236,6 +236,7 @@ void Loader::dispatch(Scenario& scenario) {
     else if (name == "sweeps") scenario.sweeps = scenario_file::readSweeps(e, f);
     else if (name == "render") scenario.render = scenario_file::readRender(e, f);
     else if (name == "training") scenario.training = scenario_file::readTraining(e, f);
+    else if (name == "expectations") scenario.expectations = scenario_file::readExpectations(e, f);
   }
   if (part_) {
     if (scenario_controller) scenario.platform.controller = *scenario_controller;
@@ -278,8 +279,36 @@ void checkTraining(const Scenario& scenario) {
   }
 }
 
+// Each <expect> names a set or a target the scenario has, and the jumps need an <environment>.
+void checkExpectations(const Scenario& scenario) {
+  for (const ExpectSpec& e : scenario.expectations) {
+    if (!scenario.environment) {
+      throw InputError(e.where, "<expect>: needs an <environment> (expectations are about its jumps)");
+    }
+    if (!e.target.empty()) {
+      const bool known = std::any_of(scenario.targets.begin(), scenario.targets.end(),
+                                     [&](const TargetSpec& t) { return t.name == e.target; });
+      if (!known) throw InputError(e.where, "<expect>: target=\"" + e.target + "\" is not one of the <targets>");
+      continue;
+    }
+    if (e.set == "targets") {
+      if (scenario.targets.empty()) throw InputError(e.where, "<expect>: set=\"targets\" but the scenario has no <targets>");
+      continue;
+    }
+    const bool found = std::any_of(scenario.sweeps.begin(), scenario.sweeps.end(),
+                                   [&](const SweepSpec& sweep) { return sweep.name == e.set; });
+    std::string known;
+    for (const SweepSpec& sweep : scenario.sweeps) known += (known.empty() ? "" : ", ") + sweep.name;
+    if (!found) {
+      throw InputError(e.where, "<expect>: set=\"" + e.set + "\" is neither \"targets\" nor a sweep of the scenario" +
+                                    (known.empty() ? std::string(" (it has none)") : " (" + known + ")"));
+    }
+  }
+}
+
 void Loader::checkAcrossElements(Scenario& scenario) const {
   if (!part_) checkTraining(scenario);  // a part on its own needs nothing else
+  if (!part_) checkExpectations(scenario);
   const PlatformSpec& p = scenario.platform;
   const auto root = scenario_file::urdfRootBody(p.urdf);
   const auto massMessage = [&](double offset) {

@@ -23,6 +23,7 @@ std::vector<TargetSpec> readTargets(const tinyxml2::XMLElement& element, const S
 std::vector<SweepSpec> readSweeps(const tinyxml2::XMLElement& element, const SourceFile& file);
 RenderSpec readRender(const tinyxml2::XMLElement& element, const SourceFile& file);
 TrainingSpec readTraining(const tinyxml2::XMLElement& element, const SourceFile& file);
+std::vector<ExpectSpec> readExpectations(const tinyxml2::XMLElement& element, const SourceFile& file);
 // The <param name=".." value=".."/> children of r's element (no other children),
 // kept as text: the plugin's schema checks them.
 std::vector<ParamSetting> readParams(ElementReader& r, const SourceFile& file);
