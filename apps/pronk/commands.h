@@ -64,6 +64,7 @@ Subcommand declareBench(CLI::App& app, const CommonOptions& common);
 Subcommand declareTrain(CLI::App& app, const CommonOptions& common);
 Subcommand declareEval(CLI::App& app, const CommonOptions& common);
 Subcommand declareCheck(CLI::App& app, const CommonOptions& common);
+Subcommand declarePlot(CLI::App& app, const CommonOptions& common);
 
 struct RunOptions {
   std::string scenario;

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
   const std::vector<Subcommand> commands = {declarePlugins(app, common), declareValidate(app, common),
                                             declareRun(app, common), declareRender(app, common),
                                             declareBench(app, common), declareTrain(app, common),
-                                            declareEval(app, common), declareCheck(app, common)};
+                                            declareEval(app, common), declareCheck(app, common),
+                                            declarePlot(app, common)};
 
   try {
     app.parse(argc, argv);

@@ -6,12 +6,14 @@
 #include <cmath>
 #include <optional>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "commands.h"
 #include "pronk/controller_factory.h"
 #include "pronk/training.h"
+#include "render/plot/training_plots.h"
 #include "run_jumps.h"
 #include "stop_signal.h"
 
@@ -115,6 +117,16 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
   }
   std::printf("wrote %s, %s, %s\n", outcome.policy_path.c_str(), outcome.checkpoint_path.c_str(),
               outcome.log_path.c_str());
+  // The curves beside the log; a plotting failure loses nothing trained.
+  const std::string curves =
+      (std::filesystem::path(outcome.log_path).parent_path() / "train_curves.png").string();
+  try {
+    render::plot::plotTrainingCurves(render::plot::readTrainingLog(outcome.log_path), scenario.platform.name,
+                                     std::filesystem::path(outcome.policy_path).stem().string(), curves);
+    std::printf("plot %s\n", curves.c_str());
+  } catch (const Error& e) {
+    std::fprintf(stderr, "warning: no training curves: %s\n", e.what());
+  }
   return outcome.interrupted && stop_signal ? 128 + stop_signal : kOk;
 }
 

@@ -172,7 +172,7 @@ std::string distancePlot(const std::vector<JumpRow>& rows, const PlotContext& c,
 
 std::string heightMaps(const std::vector<JumpRow>& rows, const PlotContext& c, const std::string& dir) {
   const std::string png = (fs::path(dir) / "heights.png").string();
-  GnuplotScript g(png, 1400, 680);
+  GnuplotScript g(png, 1400, 600);
   commonStyle(g);
   // Per (x, y) target cell (to the millimetre): the highest up-jump and the
   // lowest down-jump that landed within the radius.
@@ -263,9 +263,12 @@ std::string twistPlot(const std::vector<JumpRow>& rows, const PlotContext& c, co
   g.line("unset xtics");
   g.line("unset ytics");
   g.line("set size square");
-  g.line("set grid polar 30");
-  g.line("set ttics 0, 30");
-  g.line("set rtics");
+  g.line("set grid polar 30 lt 1 lw 1 lc rgb \"gray75\"");
+  g.line("set grid r");
+  // Signed yaw labels: left turns positive, right turns negative.
+  g.line("set ttics (\"0\" 0, \"30\" 30, \"60\" 60, \"90\" 90, \"120\" 120, \"150\" 150, \"180\" 180, "
+         "\"-150\" 210, \"-120\" 240, \"-90\" 270, \"-60\" 300, \"-30\" 330)");
+  g.line("set rtics scale 0.5");
   g.line("set rrange [0:" + format("%.3g", 1.1 * rmax) + "]");
   g.line("set rlabel \"yaw error [deg]\"");
   g.line(plotCommand(g, {landed, failed}));

@@ -10,6 +10,7 @@
 #include "pronk/error.h"
 #include "render/plot/evaluation_plots.h"
 #include "render/plot/gnuplot.h"
+#include "render/plot/training_plots.h"
 
 namespace {
 
@@ -88,7 +89,7 @@ TEST(EvaluationPlots, WritesEachFigureAsAPngBesideItsScript) {
   for (size_t i = 0; i < heights.size(); ++i) heights[i].target_z = 0.1 * (i % 5) - 0.2;
   const std::string hdir = outDir("heights");
   EXPECT_EQ(plot::plotEvaluationSet(heights, context, hdir).size(), 1u);
-  EXPECT_EQ(pngSize(hdir + "/heights.png"), (std::pair<int, int>{1400, 680}));
+  EXPECT_EQ(pngSize(hdir + "/heights.png"), (std::pair<int, int>{1400, 600}));
 }
 
 TEST(Gnuplot, QuotesTextAndReportsItsOwnErrorNamingTheScript) {
@@ -105,6 +106,48 @@ TEST(Gnuplot, QuotesTextAndReportsItsOwnErrorNamingTheScript) {
     EXPECT_NE(what.find("nothing_defined"), std::string::npos) << what;  // gnuplot's own words
   }
   EXPECT_FALSE(fs::exists(dir + "/broken.png"));
+}
+
+// A train_log.csv with the columns the curves read (a real log has more).
+std::string writeLog(const std::string& dir, const std::string& bad_cell = "") {
+  const std::string path = dir + "/train_log.csv";
+  std::ofstream out(path);
+  out << "iteration,jumps,reward_mean,batch_error_mean_m,batch_within_0.2m,validation_error_median_m,"
+         "validation_error_mean_m,validation_within_0.2m\n";
+  for (int i = 0; i <= 6; ++i) {
+    const bool validated = i % 2 == 0;
+    out << i << "," << 256 * i << "," << (i == 0 ? std::string("nan") : std::to_string(0.2 + 0.02 * i)) << ","
+        << 0.1 - 0.005 * i << "," << 0.7 + 0.01 * i << ",";
+    if (validated) out << 0.05 - 0.002 * i << "," << 0.08 - 0.003 * i << "," << 0.76 + 0.01 * i << "\n";
+    else out << (i == 3 && !bad_cell.empty() ? bad_cell : "nan") << ",nan,nan\n";
+  }
+  return path;
+}
+
+TEST(TrainingCurves, PlotsALogAgainstSimulatedJumps) {
+  const std::string dir = outDir("training");
+  const plot::TrainingLog log = plot::readTrainingLog(writeLog(dir));
+  EXPECT_EQ(log.rows.size(), 7u);
+  EXPECT_TRUE(std::isnan(log.column("reward_mean")[0]));
+  plot::plotTrainingCurves(log, "go1", "tiny_policy", dir + "/train_curves.png");
+  EXPECT_EQ(pngSize(dir + "/train_curves.png"), (std::pair<int, int>{1100, 1100}));
+  std::ifstream in(dir + "/train_curves.gp");
+  const std::string script((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(script.find("tiny\\\\_policy: training curves over 1536 simulated jumps"), std::string::npos);
+}
+
+TEST(TrainingCurves, ABrokenLogIsNamedAtItsLine) {
+  const std::string dir = outDir("training_bad");
+  try {
+    plot::readTrainingLog(writeLog(dir, "abc"));
+    FAIL() << "a log with a word for a number was read";
+  } catch (const pronk::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("train_log.csv:5: validation_error_median_m: \"abc\""), std::string::npos)
+        << e.what();
+  }
+  const std::string empty = dir + "/empty.csv";
+  std::ofstream(empty) << "";
+  EXPECT_THROW(plot::readTrainingLog(empty), pronk::InputError);
 }
 
 }  // namespace

@@ -180,6 +180,23 @@ TEST(WorldPhysics, StandingRobotHoldsTheForwardKinematicsHeight) {
   EXPECT_NEAR(total, world.totalMass() * 9.81, 0.01 * world.totalMass() * 9.81);
 }
 
+TEST(WorldPhysics, AnUnreportedTrunkMassIsCarriedButNotTold) {
+  // The paper's MV test: 2 kg more in the trunk, the controller keeps the nominal mass.
+  const std::string urdf = robotUrdf("go1");
+  PlatformSpec platform = quadrupedPlatform(urdf);
+  platform.unreported_trunk_mass = 2.0;
+  World heavy(loadUrdf(urdf, UrdfOptions{}), platform, SimSpec{}, Terrain(true, 0, {}));
+  World nominal = makeWorld(urdf);
+  EXPECT_DOUBLE_EQ(heavy.totalMass(), nominal.totalMass());
+  auto controller = makeStandController(heavy, nullptr);
+  const EpisodeResult r = runEpisode(heavy, *controller, {1.0});
+  ASSERT_FALSE(r.failure) << r.failure->detail;
+  double total = 0;
+  for (int f = 0; f < 4; ++f) total += heavy.state().foot_force[f].z();
+  // The ground carries the simulated 15.1 kg, not the told 13.1 kg.
+  EXPECT_NEAR(total, (nominal.totalMass() + 2.0) * 9.81, 0.01 * nominal.totalMass() * 9.81);
+}
+
 // Summed horizontal path of the front-right foot over a stand: a chattering
 // contact (explicit steps too long for the stiff bristle) walks it around.
 double footPath(const SimSpec& sim, double seconds) {

@@ -77,6 +77,9 @@ struct PlatformSpec {
   bool on_ground = true;                     // set base z so the feet touch the terrain
   double base_yaw = 0;                       // rad
   double trunk_mass_offset = 0;              // kg added to the root body (sweeps)
+  // kg added to the root body that the host does not report: plugins' total_mass
+  // (and the built-in controllers) keep the mass without it (the paper's MV test).
+  double unreported_trunk_mass = 0;
   JointSettings joints;
   ControllerSpec controller;
   SourceLocation where;
@@ -285,7 +288,7 @@ struct SweepVariable {
   std::string_view name;
   std::string_view unit;
 };
-inline constexpr std::array<SweepVariable, 11> kSweepVariables{{
+inline constexpr std::array<SweepVariable, 12> kSweepVariables{{
     {"target.x", "m"},
     {"target.y", "m"},
     {"target.z", "m"},
@@ -293,6 +296,7 @@ inline constexpr std::array<SweepVariable, 11> kSweepVariables{{
     {"target.roll", "rad"},
     {"target.pitch", "rad"},
     {"platform.trunk_mass_offset", "kg"},
+    {"platform.unreported_trunk_mass", "kg"},
     {"joints.damping", "N m s/rad"},
     {"joints.kp", "N m/rad"},
     {"joints.kd", "N m s/rad"},

@@ -95,6 +95,8 @@ class World {
   const Joint& joint(int i) const;            // URDF data of controller joint i
   double effortLimit(int i) const;            // after the scenario's scaling and overrides
   double footRadius(int foot) const;
+  // The mass controllers are told (URDF + trunk_mass_offset; an unreported
+  // trunk mass is simulated but not counted here).
   double totalMass() const;
   Eigen::Vector3d gravity() const;
   const RobotDescription& robot() const;

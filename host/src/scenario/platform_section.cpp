@@ -185,6 +185,7 @@ PlatformSpec readPlatform(const XMLElement& e, const SourceFile& file) {
   p.name = r.requiredText("name");
   // The lower bound depends on the URDF's masses: checked in scenario_file.cpp.
   p.trunk_mass_offset = r.number("trunk_mass_offset", p.trunk_mass_offset);
+  p.unreported_trunk_mass = r.number("unreported_trunk_mass", p.unreported_trunk_mass);
   r.rejectUnknownAttributes();
   const auto kids = r.children({"robot", "feet", "initial", "joints", "controller"});
   for (const char* name : {"robot", "feet", "initial", "joints", "controller"}) r.rejectRepeated(kids, name);

@@ -311,13 +311,17 @@ void Loader::checkAcrossElements(Scenario& scenario) const {
   if (!part_) checkExpectations(scenario);
   const PlatformSpec& p = scenario.platform;
   const auto root = scenario_file::urdfRootBody(p.urdf);
-  const auto massMessage = [&](double offset) {
-    return "trunk_mass_offset must be > " + scenario_file::formatNumber(-root->mass) + " kg: the root body of " +
-           p.urdf + " (link " + root->link + " and the links fixed to it) weighs " +
+  // The two offsets together: the simulated root body must keep a positive mass.
+  // `both`: the unreported mass is part of the sum (named then, so that the message explains it).
+  const auto massMessage = [&](double offset, bool both) {
+    return std::string(both ? "trunk_mass_offset + unreported_trunk_mass" : "trunk_mass_offset") + " must be > " +
+           scenario_file::formatNumber(-root->mass) +
+           " kg: the root body of " + p.urdf + " (link " + root->link + " and the links fixed to it) weighs " +
            scenario_file::formatNumber(root->mass) + " kg (got " + scenario_file::formatNumber(offset) + ")";
   };
-  if (root && p.trunk_mass_offset <= -root->mass) {
-    throw InputError(p.where, "<platform>: " + massMessage(p.trunk_mass_offset));
+  if (root && p.trunk_mass_offset + p.unreported_trunk_mass <= -root->mass) {
+    throw InputError(p.where, "<platform>: " + massMessage(p.trunk_mass_offset + p.unreported_trunk_mass,
+                                                           p.unreported_trunk_mass != 0));
   }
   for (const SweepSpec& sweep : scenario.sweeps) {
     const std::string tag = std::string("<") + scenario_file::axisElementName(sweep.kind) + ">: ";
@@ -325,8 +329,11 @@ void Loader::checkAcrossElements(Scenario& scenario) const {
       std::vector<double> values = axis.values;
       if (sweep.kind == SweepSpec::Kind::Random) values = {axis.min, axis.max};
       for (double v : values) {
-        if (axis.variable == "platform.trunk_mass_offset" && root && v <= -root->mass) {
-          throw InputError(axis.where, tag + massMessage(v));
+        if (axis.variable == "platform.trunk_mass_offset" && root && v + p.unreported_trunk_mass <= -root->mass) {
+          throw InputError(axis.where, tag + massMessage(v + p.unreported_trunk_mass, p.unreported_trunk_mass != 0));
+        }
+        if (axis.variable == "platform.unreported_trunk_mass" && root && v + p.trunk_mass_offset <= -root->mass) {
+          throw InputError(axis.where, tag + massMessage(v + p.trunk_mass_offset, true));
         }
         if (axis.variable == "contact.mu_static" && v < scenario.sim.contact.mu_dynamic) {
           throw InputError(axis.where, tag + "contact.mu_static values must be >= the contact's mu_dynamic (" +

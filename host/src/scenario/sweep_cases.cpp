@@ -163,6 +163,7 @@ Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode) {
   if (s.step_platforms) addStepPlatform(s, episode);
   for (const auto& [variable, value] : episode.assignments) {
     if (variable == "platform.trunk_mass_offset") s.platform.trunk_mass_offset = value;
+    else if (variable == "platform.unreported_trunk_mass") s.platform.unreported_trunk_mass = value;
     else if (variable == "joints.damping") s.platform.joints.damping = value;
     else if (variable == "joints.kp") s.platform.joints.kp = value;
     else if (variable == "joints.kd") s.platform.joints.kd = value;

@@ -136,7 +136,8 @@ struct World::Impl {
     std::vector<Eigen::Vector3d> points;
   };
   std::vector<Probe> probes;               // non-foot collision shapes
-  double mass = 0;
+  double mass = 0;            // reported (without unreported_trunk_mass)
+  double simulated_mass = 0;  // what the dynamics carry
 };
 
 World::World(const Scenario& scenario)
@@ -160,8 +161,9 @@ World::World(const RobotDescription& robot, const PlatformSpec& platform, const 
                      "armature (reflected rotor inertia) is not supported: Simbody has no per-joint armature; "
                      "set it to 0 (see docs/physics.md)");
   }
-  w.mb = addRobot(w.matter, w.robot, platform.trunk_mass_offset);
-  w.mass = w.robot.totalMass() + platform.trunk_mass_offset;
+  w.mb = addRobot(w.matter, w.robot, platform.trunk_mass_offset + platform.unreported_trunk_mass);
+  w.mass = w.robot.totalMass() + platform.trunk_mass_offset;  // what controllers are told
+  w.simulated_mass = w.mass + platform.unreported_trunk_mass;
 
   // Feet and their legs, in the scenario's order.
   if (platform.feet.empty()) throw InputError(platform.feet_where, "no foot links given");
@@ -473,10 +475,10 @@ bool World::step(const Eigen::VectorXd& torque) {
   }
   w.system.realize(s, SimTK::Stage::Velocity);
   const double kinetic = w.matter.calcKineticEnergy(s);
-  if (kinetic > kDivergenceEnergyPerKg * w.mass) {
+  if (kinetic > kDivergenceEnergyPerKg * w.simulated_mass) {
     failure_ = Failure{s.getTime(), "diverged",
                        "kinetic energy " + std::to_string(kinetic) + " J exceeds " +
-                           std::to_string(kDivergenceEnergyPerKg * w.mass) + " J (runaway)"};
+                           std::to_string(kDivergenceEnergyPerKg * w.simulated_mass) + " J (runaway)"};
     return false;
   }
   readState();
