@@ -49,7 +49,8 @@ struct SetResult {
   SetSummary summary;
   std::vector<std::string> plots;
   bool complete = false;
-  std::string error;  // the set could not run or be plotted: it fails alone
+  std::string error;       // the set could not run: it fails alone
+  std::string plot_error;  // it ran, its figures could not be drawn (its figures and summary stay)
 };
 
 void printSummaryTable(const std::vector<SetResult>& results, double radius) {
@@ -76,6 +77,7 @@ void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
                         {"summary", toJson(r.summary)}, {"plots", nlohmann::json::array()}};
     for (const std::string& p : r.plots) j["plots"].push_back(fs::path(p).lexically_relative(o.out_dir).string());
     if (!r.error.empty()) j["error"] = r.error;
+    if (!r.plot_error.empty()) j["plot_error"] = r.plot_error;
     sets.push_back(j);
   }
   const nlohmann::json summary = {{"pronk_version", PRONK_VERSION}, {"git_commit", PRONK_GIT_COMMIT},
@@ -84,7 +86,7 @@ void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
 }
 
 SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToRun& set, const StopOnSignal& stop) {
-  SetResult result{set.name, set.file, set.set, {}, {}, false, ""};
+  SetResult result{set.name, set.file, set.set, {}, {}, false, "", ""};
   const std::unique_ptr<SetRollout> run = prepareSet(common, set, o.policy, o.jobs, stop.flag());
   const std::string& policy = run->policy;
   const std::vector<EpisodeCase>& cases = run->cases;
@@ -125,7 +127,13 @@ SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToR
   if (o.plots && result.complete) {
     render::plot::PlotContext context{robot.empty() ? pool.robot().name : robot, policyLabel(policy),
                                       fs::path(set.file).stem().string() + " / " + set.set, o.radius};
-    result.plots = render::plot::plotEvaluationSet(rows, context, dir.dir());
+    try {
+      result.plots = render::plot::plotEvaluationSet(rows, context, dir.dir());
+    } catch (const Error& e) {
+      // The jumps and the summary are kept; `--resume` draws the figures again.
+      result.plot_error = e.what();
+      std::fprintf(stderr, "pronk eval: set %s: no figures: %s\n", set.name.c_str(), e.what());
+    }
     for (const std::string& p : result.plots) std::printf("  plot %s\n", p.c_str());
   }
   return result;
@@ -149,10 +157,11 @@ int runEval(const CommonOptions& common, const EvalOptions& o) {
     if (stop.stopped()) break;
     try {
       results.push_back(runSet(common, o, set, stop));
+      errors = errors || !results.back().plot_error.empty();
     } catch (const Error& e) {
       // The set fails alone, with its reason; the others run.
       std::fprintf(stderr, "pronk eval: set %s: %s\n", set.name.c_str(), e.what());
-      SetResult failed{set.name, set.file, set.set, {}, {}, false, e.what()};
+      SetResult failed{set.name, set.file, set.set, {}, {}, false, e.what(), ""};
       results.push_back(failed);
       errors = true;
     }

@@ -117,6 +117,33 @@ TEST(PronkEval, AResumedRunDoesOnlyWhatIsLeftAndEndsAsAWholeRun) {
   EXPECT_EQ(summary(whole)["sets"][0]["summary"]["error_m"], summary(cut)["sets"][0]["summary"]["error_m"]);
 }
 
+TEST(PronkEval, FiguresThatCannotBeDrawnLoseNoResult) {
+  // No gnuplot on the PATH: the set's jumps and summary are kept, the reason
+  // is named, the exit status is 3; --resume draws the figures once it is back.
+  const std::string out = outDir("eval_no_gnuplot");
+  std::string output;
+  FILE* pipe = popen(("PATH=/nonexistent " + std::string(PRONK_EXE) + " eval " + kSmall +
+                      " --sweep ahead --policy ballistic --out " + out + " 2>&1; echo \"exit $?\"")
+                         .c_str(),
+                     "r");
+  ASSERT_NE(pipe, nullptr);
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  pclose(pipe);
+  EXPECT_NE(output.find("exit 3"), std::string::npos) << output;
+  EXPECT_NE(output.find("no figures"), std::string::npos) << output;
+  EXPECT_NE(output.find("gnuplot"), std::string::npos) << output;
+  const nlohmann::json s = summary(out);
+  ASSERT_TRUE(s.contains("sets")) << output;
+  EXPECT_EQ(s["sets"][0]["summary"]["jumps"], 12);
+  EXPECT_TRUE(s["sets"][0].contains("plot_error"));
+  EXPECT_EQ(lines(out + "/go1_eval_small-ahead/jumps.csv").size(), 13u);
+  const pronk_test::Outcome again = pronk("eval " + kSmall + " --sweep ahead --policy ballistic --resume --out " + out);
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_NE(again.output.find("12 done before (--resume)"), std::string::npos) << again.output;
+  EXPECT_TRUE(fs::exists(out + "/go1_eval_small-ahead/distance.png"));
+}
+
 TEST(PronkEval, BadInputIsNamedBeforeAnyJumpRuns) {
   const std::string out = outDir("eval_bad");
   const pronk_test::Outcome sweep = pronk("eval " + kSmall + " --sweep nowhere --policy ballistic --out " + out);
