@@ -12,13 +12,15 @@
 #include "pronk/error.h"
 #include "pronk/file_io.h"
 #include "pronk/report.h"
+#include "cells.h"
 
 namespace pronk {
 namespace {
 
-constexpr double kDeg = 180.0 / M_PI;
+using report_cells::csvCell;
+using report_cells::number;
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+constexpr double kDeg = 180.0 / M_PI;
 
 double numberOf(const nlohmann::json& j, const char* key, const std::string& where) {
   const auto it = j.find(key);
@@ -32,13 +34,6 @@ std::string textOf(const nlohmann::json& j, const char* key, const std::string& 
   const auto it = j.find(key);
   if (it == j.end() || !it->is_string()) throw Error(where + ": the jump record has no text \"" + key + "\"");
   return it->get<std::string>();
-}
-
-std::string csvCell(double v) {
-  if (!std::isfinite(v)) return "";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
 }
 
 std::string csvText(std::string s) {

@@ -7,9 +7,13 @@
 
 #include "pronk/file_io.h"
 #include "pronk/report.h"
+#include "cells.h"
 
 namespace pronk {
 namespace {
+
+using report_cells::csvCell;
+using report_cells::number;
 
 constexpr double kDeg = 180.0 / M_PI;
 
@@ -47,15 +51,6 @@ std::string reasonOf(const EpisodeRecord& r, const JumpOutcome& o) {
     return text;
   }
   return "";
-}
-
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string csvCell(double v) {
-  if (!std::isfinite(v)) return "";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
 }
 
 // The time of a host event, or the value of a metric, by name; NaN when absent.
