@@ -60,6 +60,7 @@ struct EnvironmentSettings {
   double apex_clearance = 0.0;
   bool workspace_check = true;
   double max_speed_shortfall = 0.1;
+  double knee_clearance = 0.01;
   double sideways_roll_gain = 0.0, sideways_roll_rate_gain = 0.0;
 };
 
@@ -85,6 +86,7 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   s.apex_clearance = read.real("apex_clearance");
   s.workspace_check = read.integer("workspace_check") != 0;
   s.max_speed_shortfall = read.real("max_speed_shortfall");
+  s.knee_clearance = read.real("knee_clearance");
   s.sideways_roll_gain = read.real("sideways_roll_gain");
   s.sideways_roll_rate_gain = read.real("sideways_roll_rate_gain");
   return s;
@@ -241,6 +243,9 @@ class JumpEnvironment {
     ballistic.apex_clearance = settings_.apex_clearance;
     const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, workspace());
     if (safety.speed_shortfall) metric("predicted_speed_shortfall", *safety.speed_shortfall);
+    if (const std::optional<jump::LegWorkspace> ws = workspace()) {
+      metric("planned_knee_clearance", jump::thrustKneeClearance(plan, mapped.action, *ws));
+    }
     if (!safety.verdict) {
       throw Rejected(std::string(jump::safetyIssueName(safety.verdict.issue)) + ": " + safety.verdict.reason);
     }
@@ -350,6 +355,7 @@ class JumpEnvironment {
     ws.joint_motors = joint_motors_;
     ws.motor = settings_.jump.hold.motor;
     ws.max_speed_shortfall = settings_.max_speed_shortfall;
+    ws.knee_clearance = settings_.knee_clearance;
     return ws;
   }
 

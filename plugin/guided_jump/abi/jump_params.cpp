@@ -42,6 +42,10 @@ const pronk_param_decl kLegIk = {
     kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
     "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
     "none) or newton (6 damped Newton steps on the host's kinematics, the old path; a quarter of a jump's time)"};
+const pronk_param_decl kStanceFeet = {
+    kDeclSize, "stance_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "anchored", "",
+    "thrust: each stance foot's IK target is where it stood when the thrust began (anchored: a foot the thrust "
+    "unloads presses back down) or where it is now (measured, the paper's)"};
 // Both factories too, but each with its own default (see the lists below).
 pronk_param_decl feedforwardDecl(const char* default_value) {
   return {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, default_value, "", kFeedforwardDoc};
@@ -75,6 +79,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
                  "the landing surface's height above the take-off surface (when the legs extend)"});
     d.push_back(kMomentumGain);
     d.push_back(kLegIk);
+    d.push_back(kStanceFeet);
     return d;
   }();
   return decls;
@@ -94,6 +99,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kFlightKpDivision,
         kMomentumGain,
         kLegIk,
+        kStanceFeet,
         {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
          "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
@@ -111,6 +117,9 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
          "safety filter: the CoM apex must clear the target's standing CoM height by this"},
         {kDeclSize, "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
          "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
+        {kDeclSize, "knee_clearance", PRONK_PARAM_REAL, 0, -1.0, 1.0, 0, "0.01", "m",
+         "safety filter and planner (with workspace_check): every knee stays this far above its stance foot's "
+         "centre on the thrust path (-1: off)"},
         {kDeclSize, "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
          "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
          "torque check, under the 'motor' model)"},
@@ -148,6 +157,11 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
     throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");
   }
   s->exact_leg_ik = ik == "exact";
+  const std::string feet = read.string("stance_feet");
+  if (feet != "anchored" && feet != "measured") {
+    throw InvalidArgument("parameter 'stance_feet': '" + feet + "' is neither anchored nor measured");
+  }
+  s->anchored_stance_feet = feet == "anchored";
 }
 
 jump::MotorModel motorModelFromName(const std::string& name) {

@@ -158,6 +158,8 @@ void JumpController::startThrust(const pronk_robot_state& s) {
   for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int f = 0; f < feet_; ++f) centroid += vec(s.foot_position + 3 * f) / feet_;
+  thrust_feet_.resize(3, feet_);
+  for (int f = 0; f < feet_; ++f) thrust_feet_.col(f) = vec(s.foot_position + 3 * f);
   stance_offset_ = R.transpose() * (vec(s.base_position) - centroid);
   Eigen::VectorXd stance(n_);
   for (int j = 0; j < n_; ++j) stance(j) = settings_.hold.stance[j % 3];
@@ -232,6 +234,10 @@ Eigen::Vector3d JumpController::legIk(int foot, const Eigen::Vector3d& target) {
   return q.segment<3>(3 * foot);
 }
 
+Eigen::Vector3d JumpController::stanceFoot(const pronk_robot_state& s, int f) const {
+  return settings_.anchored_stance_feet ? Eigen::Vector3d(thrust_feet_.col(f)) : vec(s.foot_position + 3 * f);
+}
+
 void JumpController::thrustTorques(const pronk_robot_state& s, double t, double* torque) {
   const bool running = t <= plan_->duration();
   const double tc = std::min(t, plan_->duration());
@@ -260,12 +266,12 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   const Eigen::Vector3d trunk_des = vec(s.base_position) + (c_ref - vec(s.com_position));
 
   for (int f = 0; f < feet_; ++f) {
-    const Eigen::Vector3d foot = vec(s.foot_position + 3 * f);
+    const Eigen::Vector3d foot = stanceFoot(s, f);
     const Eigen::Vector3d target = R_des.transpose() * (foot - trunk_des);
     q_ref_.segment<3>(3 * f) = legIk(f, target);
   }
   for (int f = 0; f < feet_; ++f) {
-    const Eigen::Vector3d foot = vec(s.foot_position + 3 * f);
+    const Eigen::Vector3d foot = stanceFoot(s, f);
     const Eigen::Vector3d v_rel = R_des.transpose() * (-(v_ref + w_ref.cross(foot - trunk_des)));
     const Eigen::Matrix3d J = legJacobian(f, q_ref_);
     constexpr double lambda = 1e-2;

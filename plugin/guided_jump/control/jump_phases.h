@@ -74,6 +74,10 @@ struct JumpSettings {
   // none: the IK takes Newton steps on the host's kinematics. Set by the
   // factories when exact_leg_ik (parameter leg_ik).
   bool exact_leg_ik = true;
+  // Thrust: each stance foot's IK target is where that foot stood when the thrust
+  // began (true), or where it is now (false, the paper's). A foot the thrust has
+  // unloaded then presses back down instead of floating with its leg.
+  bool anchored_stance_feet = true;
   std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
 };
 
@@ -158,6 +162,8 @@ class JumpController {
   void enter(JumpPhase phase, double time, const std::string& detail = "");
   void startThrust(const pronk_robot_state& s);
   void landingReference(const pronk_robot_state& s);
+  // Where stance foot f's IK target lies in the world (settings_.anchored_stance_feet).
+  Eigen::Vector3d stanceFoot(const pronk_robot_state& s, int f) const;
   void thrustTorques(const pronk_robot_state& s, double t, double* torque);
   void jointTorques(const pronk_robot_state& s, double kp, const Eigen::VectorXd& q_ref, const Eigen::VectorXd& qd_ref,
                     bool gravity, const Eigen::Vector3d& com_acceleration, const Eigen::Vector3d& moment,
@@ -210,6 +216,7 @@ class JumpController {
   Eigen::Matrix3d heading_ = Eigen::Matrix3d::Identity();  // S -> world rotation
   Eigen::VectorXd q_ref_, qd_ref_, blend_from_, commanded_;
   Eigen::Vector3d stance_offset_ = Eigen::Vector3d::Zero();  // trunk - feet centroid at the thrust start, trunk frame
+  Eigen::Matrix3Xd thrust_feet_;  // feet at the thrust start, world
   Eigen::Matrix3Xd stance_feet_;  // feet at the stance joints, trunk frame
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> jacobian_;
 };

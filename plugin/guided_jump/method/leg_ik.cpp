@@ -153,6 +153,15 @@ Eigen::Vector3d footPosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
   return leg.hipPosition() + Eigen::Vector3d(x, c0 * y - s0 * z, s0 * y + c0 * z);
 }
 
+Eigen::Vector3d kneePosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
+  const double x = -leg.thigh_length * std::sin(q[1]);
+  const double z = -leg.thigh_length * std::cos(q[1]);
+  const double y = leg.side * leg.thigh_offset;
+  const double c0 = std::cos(q[0]);
+  const double s0 = std::sin(q[0]);
+  return leg.hipPosition() + Eigen::Vector3d(x, c0 * y - s0 * z, s0 * y + c0 * z);
+}
+
 Eigen::Matrix3d footJacobian(const LegGeometry& leg, const Eigen::Vector3d& q) {
   const double l1 = leg.thigh_length;
   const double l2 = leg.calf_length;

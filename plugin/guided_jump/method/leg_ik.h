@@ -73,6 +73,9 @@ std::array<LegGeometry, kLegCount> aliengoLegs();
 // Forward kinematics: foot centre in the trunk frame.
 Eigen::Vector3d footPosition(const LegGeometry& leg, const Eigen::Vector3d& q);
 
+// Forward kinematics of the knee joint (the calf joint's origin), trunk frame.
+Eigen::Vector3d kneePosition(const LegGeometry& leg, const Eigen::Vector3d& q);
+
 // d footPosition / d q (columns: hip, thigh, calf), trunk frame, analytic.
 Eigen::Matrix3d footJacobian(const LegGeometry& leg, const Eigen::Vector3d& q);
 

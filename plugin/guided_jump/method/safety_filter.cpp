@@ -80,36 +80,76 @@ std::array<LegReachCheck, kLegCount> reachChecks(const LegWorkspace& ws) {
   return {LegReachCheck(ws.legs[0]), LegReachCheck(ws.legs[1]), LegReachCheck(ws.legs[2]), LegReachCheck(ws.legs[3])};
 }
 
+namespace {
+
+// The least height of a knee above its stance foot's centre for one trunk pose
+// (+inf where a leg has no IK solution: the reach check's finding).
+double kneeClearanceAt(const LegWorkspace& ws, const Eigen::Vector3d& trunk, const Eigen::Matrix3d& R) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int leg = 0; leg < kLegCount; ++leg) {
+    const LegIkResult ik = solveLegIk(ws.legs[leg], R.transpose() * (ws.feet[leg] - trunk));
+    if (!ik.ok()) continue;
+    least = std::min(least, (trunk + R * kneePosition(ws.legs[leg], ik.q)).z() - ws.feet[leg].z());
+  }
+  return least;
+}
+
+}  // namespace
+
 std::optional<std::string> workspaceProblem(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws,
                                             const std::array<LegReachCheck, kLegCount>& reach, bool explain) {
   const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
   const int n = std::max(ws.path_samples, 1);
+  const bool knees = ws.knee_clearance > -std::numeric_limits<double>::infinity();
+  enum class Finding { kNone, kFootOutOfReach, kKneeLow };
   // The lift-off end first: the stretched legs there are where most plans fail,
   // and a search over many candidates then rejects them after one sample.
   // Then every fourth sample, then the rest: a path that leaves the workspace
   // for a while is found after a few samples.
-  auto leaves = [&](int i) {
+  auto finding = [&](int i) {
     const double t = thrust.duration() * i / n;
     const Eigen::Matrix3d R = orient.rotation(t);
     const Eigen::Vector3d trunk = thrust.position(t) + R * ws.com_to_trunk;
-    return !feetReachable(reach, ws.feet, trunk, R, ws.require_within_limits);
+    if (!feetReachable(reach, ws.feet, trunk, R, ws.require_within_limits)) return Finding::kFootOutOfReach;
+    if (knees && kneeClearanceAt(ws, trunk, R) < ws.knee_clearance) return Finding::kKneeLow;
+    return Finding::kNone;
   };
-  auto problem = [&](int i) -> std::string {
+  auto problem = [&](int i, Finding f) -> std::string {
     if (!explain) return std::string();
     const double t = thrust.duration() * i / n;
     std::ostringstream msg;
-    msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
-        << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+    if (f == Finding::kKneeLow) {
+      const Eigen::Matrix3d R = orient.rotation(t);
+      msg << "a knee comes down to " << kneeClearanceAt(ws, thrust.position(t) + R * ws.com_to_trunk, R)
+          << " m above its stance foot (less than the knee clearance " << ws.knee_clearance << " m) at t = " << t
+          << " s of the " << thrust.duration() << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+    } else {
+      msg << "a stance foot is out of the leg workspace at t = " << t << " s of the " << thrust.duration()
+          << " s thrust (CoM " << thrust.position(t).transpose() << ")";
+    }
     return msg.str();
   };
-  if (leaves(n)) return problem(n);
+  if (const Finding f = finding(n); f != Finding::kNone) return problem(n, f);
   for (int i = 0; i < n; i += 4) {
-    if (leaves(i)) return problem(i);
+    if (const Finding f = finding(i); f != Finding::kNone) return problem(i, f);
   }
   for (int i = 1; i < n; ++i) {
-    if (i % 4 != 0 && leaves(i)) return problem(i);
+    if (i % 4 == 0) continue;
+    if (const Finding f = finding(i); f != Finding::kNone) return problem(i, f);
   }
   return std::nullopt;
+}
+
+double thrustKneeClearance(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& ws) {
+  const OrientationTrajectory orient(Eigen::Vector3d::Zero(), action, thrust.duration());
+  const int n = std::max(ws.path_samples, 1);
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= n; ++i) {
+    const double t = thrust.duration() * i / n;
+    const Eigen::Matrix3d R = orient.rotation(t);
+    least = std::min(least, kneeClearanceAt(ws, thrust.position(t) + R * ws.com_to_trunk, R));
+  }
+  return least;
 }
 
 std::optional<std::string> supportProblem(const ThrustPlan& thrust, const std::array<Eigen::Vector3d, kLegCount>& feet,

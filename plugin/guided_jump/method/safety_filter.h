@@ -32,7 +32,8 @@ enum class SafetyIssue {
   kApexBelowTarget,    // the apex does not reach target height + apex_clearance
   kTargetUnreachable,  // the CoM never comes down to the target height, or lands too far from the target
   kOutsideWorkspace,   // the caller's workspace predicate rejects the lift-off position
-  kLegWorkspace,       // a stance foot leaves the leg workspace on the thrust path (thrustLeavesWorkspace)
+  kLegWorkspace,       // a stance foot leaves the leg workspace, or a knee comes down to the ground, on the
+                       // thrust path (thrustLeavesWorkspace)
   kTorqueLimit,        // the motors would miss the lift-off speed by too much (thrustExceedsTorque)
 };
 // "none", "not_finite", "apex_below_target", ..., "leg_workspace", "torque_limit"
@@ -72,6 +73,12 @@ struct LegWorkspace {
   Eigen::Vector3d com_to_trunk = Eigen::Vector3d::Zero();  // trunk centre - CoM, trunk frame, assumed constant
   int path_samples = 60;  // samples of the thrust path (plus both ends) checked
   bool require_within_limits = true;
+  // Every knee (the calf joint) stays at least this high above its stance
+  // foot's centre on the thrust path, m. A deep crouch that twists the trunk
+  // over planted feet folds a thigh down to the ground (measured on the Go1:
+  // the thrusts whose thighs touched had knees at or below their feet's centres).
+  // -inf: not checked.
+  double knee_clearance = -std::numeric_limits<double>::infinity();
   // For the torque prediction (thrustExceedsTorque): the whole robot's mass (0:
   // torques not checked), the motor limits of each leg's hip, thigh and calf
   // (default: none), and the motor model that turns them into the torque
@@ -94,9 +101,10 @@ LegWorkspace standingWorkspace(const std::array<LegGeometry, kLegCount>& legs, c
 // Where a thrust leaves the leg workspace: samples the thrust path of `action`
 // (ThrustPlan at `azimuth` from com_start about polar_origin, with the action's
 // orientation Bezier from a level start) and returns, for the first sample at
-// which a stance foot of `workspace` is out of reach (the lift-off end is
-// checked first, then the path from its start), a sentence saying when and
-// where; std::nullopt when every foot stays reachable.
+// which a stance foot of `workspace` is out of reach or a knee is lower than
+// workspace.knee_clearance above its foot (the lift-off end is checked first,
+// then the path from its start), a sentence saying when and where;
+// std::nullopt when every foot stays reachable and every knee clear.
 std::optional<std::string> thrustLeavesWorkspace(const JumpAction& action, double azimuth,
                                                  const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                  const LegWorkspace& workspace);
@@ -133,6 +141,11 @@ std::optional<std::string> thrustLeavesSupport(const JumpAction& action, double 
 std::optional<std::string> thrustExceedsTorque(const JumpAction& action, double azimuth,
                                                const Eigen::Vector3d& com_start, const Eigen::Vector3d& polar_origin,
                                                const LegWorkspace& workspace, const Eigen::Vector3d& gravity);
+
+// The least height of a knee above its stance foot's centre on the thrust path
+// (world z, m), from each leg's IK at the planned trunk pose; +inf when a foot is
+// out of reach (workspaceProblem's finding).
+double thrustKneeClearance(const ThrustPlan& thrust, const JumpAction& action, const LegWorkspace& workspace);
 
 // The lift-off speed shortfall thrustExceedsTorque compares with
 // workspace.max_speed_shortfall, m/s (NaN when workspace.mass is 0).
