@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "commands.h"
 #include "pronk/controller.h"
@@ -12,20 +14,65 @@
 namespace pronk::cli {
 namespace {
 
+// The scenario's (or part's) environment: its factory, its parameters against
+// the factory's declarations, and, on a robot, what only the environment can
+// judge (a motor model's name, action ranges, planner settings): an instance
+// created as a run would create it, its refusal reported at the parameter's line.
+// Returns the environment's name.
+std::string checkEnvironment(const Scenario& scenario, const PluginRegistry& registry, const World* world) {
+  const pronk_factory& env = findEnvironment(*scenario.environment, registry);
+  const ResolvedParams params = resolveParams(env, scenario.environment->params, scenario.environment->where);
+  if (!world) return env.name;
+  try {
+    checkFactoryFitsWorld(env, PRONK_FACTORY_ENVIRONMENT, registry.libraryOf(&env)->path(), *world);
+    const HostApi host(*world, nullptr);
+    EnvironmentInstance instance(env, registry.libraryOf(&env)->path(), *host.api(), params);
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    SourceLocation where = scenario.environment->where;
+    for (const ParamSetting& p : scenario.environment->params) {
+      if (message.find("'" + p.name + "'") != std::string::npos) where = p.where;
+    }
+    throw InputError(where, message);
+  }
+  return env.name;
+}
+
+// A file meant to be included: what it holds, its robot if it has one, its
+// controller's and environment's parameters (on its own robot, or against the
+// declarations alone when it has none: the including file's validate judges
+// the rest on its robot).
+void validatePart(const CommonOptions& common, const std::string& file) {
+  const Scenario part = loadScenarioPart(file);
+  std::optional<World> world;
+  std::string robot = "no platform";
+  if (!part.platform.urdf.empty()) {
+    world.emplace(part);
+    robot = world->robot().name + ", " + std::to_string(world->jointCount()) + " joints, " +
+            std::to_string(world->footCount()) + " feet";
+  }
+  std::string environment;
+  const bool plugin_controller = !part.platform.controller.factory.empty();
+  if (plugin_controller || part.environment) {
+    PluginRegistry registry;
+    loadPlugins(registry, common.plugin_paths, &part.platform.controller);
+    if (plugin_controller) checkController(part.platform.controller, registry);
+    if (part.environment) {
+      environment = ", environment " + checkEnvironment(part, registry, world ? &*world : nullptr);
+      if (!world) environment += " (parameters checked against its declarations)";
+    }
+  }
+  std::printf("ok  %s (part: %s%s)\n", file.c_str(), robot.c_str(), environment.c_str());
+}
+
 int validateCommand(const CommonOptions& common, const std::vector<std::string>& files) {
   int failures = 0;
   for (const std::string& file : files) {
     try {
       if (isScenarioPart(file)) {
-        // A file meant to be included: check what it holds, and its robot if it has one.
-        const Scenario part = loadScenarioPart(file);
-        std::string robot = "no platform";
-        if (!part.platform.urdf.empty()) {
-          World world(part);
-          robot = world.robot().name + ", " + std::to_string(world.jointCount()) + " joints, " +
-                  std::to_string(world.footCount()) + " feet";
-        }
-        std::printf("ok  %s (part: %s)\n", file.c_str(), robot.c_str());
+        validatePart(common, file);
         continue;
       }
       const Scenario scenario = loadScenario(file);
@@ -35,28 +82,7 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
       for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
       if (!scenario.platform.controller.factory.empty()) checkController(scenario.platform.controller, registry);
       std::string environment;
-      if (scenario.environment) {
-        const pronk_factory& env = findEnvironment(*scenario.environment, registry);
-        const ResolvedParams params = resolveParams(env, scenario.environment->params, scenario.environment->where);
-        // What only the environment can judge (a motor model's name, action
-        // ranges, planner settings): create an instance on this robot, as a run
-        // would, and report its refusal at the parameter's line.
-        try {
-          checkFactoryFitsWorld(env, PRONK_FACTORY_ENVIRONMENT, registry.libraryOf(&env)->path(), world);
-          const HostApi host(world, nullptr);
-          EnvironmentInstance instance(env, registry.libraryOf(&env)->path(), *host.api(), params);
-        } catch (const InputError&) {
-          throw;
-        } catch (const Error& e) {
-          const std::string message = e.what();
-          SourceLocation where = scenario.environment->where;
-          for (const ParamSetting& p : scenario.environment->params) {
-            if (message.find("'" + p.name + "'") != std::string::npos) where = p.where;
-          }
-          throw InputError(where, message);
-        }
-        environment = std::string(", environment ") + env.name;
-      }
+      if (scenario.environment) environment = ", environment " + checkEnvironment(scenario, registry, &world);
       // Every case a run would set up (a step platform needs room for its edge):
       // what a run would refuse, validate refuses, at the target's or sweep's line.
       std::vector<EpisodeCase> cases = targetCases(scenario);

@@ -328,4 +328,38 @@ TEST(Cli, ValidateRefusesWhatARunWouldWithTheParameterLine) {
   EXPECT_EQ(pronk("validate " + scenario("duration", "1.5")).status, 0);
 }
 
+TEST(Cli, ValidateOfAnIncludedPartChecksItsParameters) {
+  // A part file's <param>s: against the plugin's declarations when the part has
+  // no robot (an unknown name, a number outside its declared range); on its own
+  // robot, as the environment would judge them in a run.
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/validate_part_params";
+  std::filesystem::create_directories(dir);
+  auto part = [&](const std::string& file_name, const std::string& name, const std::string& value, bool robot) {
+    const std::string file = dir + "/" + file_name + ".xml";
+    std::ofstream out(file);
+    out << "<scenario_part version=\"1\" angle=\"rad\">\n";
+    if (robot) out << "  <include file=\"" << source("scenarios/platforms/go1.xml") << "\"/>\n";
+    out << "  <environment name=\"jump\" plugin=\"pronk_guided_jump\">\n"
+        << "    <param name=\"" << name << "\" value=\"" << value << "\"/>\n"
+        << "  </environment>\n</scenario_part>\n";
+    return file;
+  };
+  const Outcome unknown = pronk("validate " + part("unknown", "no_such_parameter", "3", false));
+  EXPECT_EQ(unknown.status, 3) << unknown.output;
+  EXPECT_NE(unknown.output.find("unknown.xml:3: "), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("no_such_parameter"), std::string::npos) << unknown.output;
+  const Outcome range = pronk("validate " + part("range", "kp", "-3", false));
+  EXPECT_EQ(range.status, 3) << range.output;
+  EXPECT_NE(range.output.find("range.xml:3: "), std::string::npos) << range.output;
+  const Outcome fine = pronk("validate " + part("fine", "kp", "50", false));
+  EXPECT_EQ(fine.status, 0) << fine.output;
+  EXPECT_NE(fine.output.find("parameters checked against its declarations"), std::string::npos) << fine.output;
+  const Outcome motor = pronk("validate " + part("motor_on_robot", "motor", "bogus", true));
+  EXPECT_EQ(motor.status, 3) << motor.output;
+  EXPECT_NE(motor.output.find("motor_on_robot.xml:4: "), std::string::npos) << motor.output;
+  EXPECT_NE(motor.output.find("'bogus' is neither dc nor effort"), std::string::npos) << motor.output;
+  // The shipped environment parts pass.
+  EXPECT_EQ(pronk("validate " + source("scenarios/go1/jump_environment.xml")).status, 0);
+}
+
 }  // namespace

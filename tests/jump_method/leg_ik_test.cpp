@@ -30,6 +30,29 @@ TEST(LegIk, Go1StanceFootPosition) {
   }
 }
 
+TEST(LegIk, TheKneeLiesOneThighLengthFromTheThighJointAndOneCalfLengthFromTheFoot) {
+  // Go1 stance: the thigh at 0.75 rad swings the knee back, l1 sin 0.75 behind
+  // and l1 cos 0.75 below the thigh joint; the calf at -1.5 rad brings the foot
+  // back under the hip, l2 cos(0.75 - 1.5) below the knee.
+  const Eigen::Vector3d stance(0.0, 0.75, -1.5);
+  for (Leg leg : kLegs) {
+    const LegGeometry g = go1Leg(leg);
+    const Eigen::Vector3d knee = kneePosition(g, stance);
+    const Eigen::Vector3d thigh_joint = g.hipPosition() + Eigen::Vector3d(0, g.side * g.thigh_offset, 0);
+    EXPECT_LT((knee - thigh_joint - Eigen::Vector3d(-0.213 * std::sin(0.75), 0, -0.213 * std::cos(0.75))).norm(), 1e-12)
+        << legName(leg);
+    EXPECT_NEAR(knee.z() - footPosition(g, stance).z(), 0.213 * std::cos(-0.75), 1e-12) << legName(leg);
+  }
+  // Abducted, turned and bent anywhere: the calf keeps its length.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> angle(-2.5, 2.5);
+  const LegGeometry g = aliengoLeg(Leg::kRearLeft);
+  for (int i = 0; i < 100; ++i) {
+    const Eigen::Vector3d q(angle(rng), angle(rng), angle(rng));
+    EXPECT_NEAR((footPosition(g, q) - kneePosition(g, q)).norm(), g.calf_length, 1e-12) << q.transpose();
+  }
+}
+
 TEST(LegIk, ZeroConfigurationHangsStraightDown) {
   for (Leg leg : kLegs) {
     const LegGeometry g = aliengoLeg(leg);

@@ -574,6 +574,38 @@ TEST(Planner, LegWorkspaceHoldsOnTheWholeThrustPath) {
   }
 }
 
+TEST(Planner, KneeClearanceMakesTheSearchKeepTheKneesUp) {
+  // Backward-sideways jumps that turn toward their side (a development sample,
+  // seed 777): with a clearance the search returns only candidates whose knees
+  // stay that high; asked for more than the free plan's least, it moves on to
+  // another candidate that keeps it, or refuses.
+  PlannerConfig cfg = go1Config(true);
+  const double deg = kPi / 180;
+  for (const JumpTarget& t : {JumpTarget{{-0.41, -0.52, 0.0}, -35.4 * deg}, JumpTarget{{-0.27, -0.25, 0.0}, -67.2 * deg},
+                              JumpTarget{{-0.09, 0.36, 0.0}, 70.7 * deg}}) {
+    cfg.workspace->knee_clearance = -std::numeric_limits<double>::infinity();
+    const PlannedJump free = planJump(t, cfg);
+    ASSERT_TRUE(free.feasible) << free.reason;
+    const double free_least = thrustKneeClearance(
+        ThrustPlan(free.action, free.azimuth_rad, cfg.start_com, cfg.polarOrigin()), free.action, *cfg.workspace);
+    cfg.workspace->knee_clearance = free_least + 0.005;
+    const PlannedJump higher = planJump(t, cfg);
+    if (higher.feasible) {
+      EXPECT_GE(thrustKneeClearance(ThrustPlan(higher.action, higher.azimuth_rad, cfg.start_com, cfg.polarOrigin()),
+                                    higher.action, *cfg.workspace),
+                free_least + 0.005);
+    } else {
+      EXPECT_EQ(higher.limit, PlanLimit::kLegWorkspace) << higher.reason;
+    }
+    cfg.workspace->knee_clearance = 0.01;
+    const PlannedJump kept = planJump(t, cfg);
+    ASSERT_TRUE(kept.feasible) << kept.reason;
+    EXPECT_GE(thrustKneeClearance(ThrustPlan(kept.action, kept.azimuth_rad, cfg.start_com, cfg.polarOrigin()),
+                                  kept.action, *cfg.workspace),
+              0.01);
+  }
+}
+
 TEST(Planner, RejectsBadInput) {
   PlannerConfig cfg = go1Config(false);
   EXPECT_THROW(planJump({{std::nan(""), 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);

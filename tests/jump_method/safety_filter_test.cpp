@@ -139,6 +139,25 @@ TEST_F(SafetyFilterOnAPlan, RejectsAThrustPathThatLosesAFootBeforeCheckingTorque
   EXPECT_FALSE(r.speed_shortfall.has_value());
 }
 
+TEST_F(SafetyFilterOnAPlan, RejectsAThrustWhoseKneesComeDownBelowTheClearance) {
+  // The forward jump's crouch keeps every knee well above its foot: a
+  // clearance just below the path's least passes, one just above refuses it,
+  // naming the knee, before the torque check.
+  const double least = thrustKneeClearance(thrust(), plan_.action, *cfg_.workspace);
+  // At the start the knees stand l2 cos(q1 + q2) = 0.213 cos(-0.75) above the feet;
+  // the crouch only lowers them.
+  EXPECT_LE(least, 0.213 * std::cos(0.75) + 1e-9);
+  EXPECT_GT(least, 0.03);
+  LegWorkspace ws = *cfg_.workspace;
+  ws.knee_clearance = least - 0.005;
+  EXPECT_TRUE(filter(ws).verdict.safe()) << filter(ws).verdict.reason;
+  ws.knee_clearance = least + 0.005;
+  const SafetyFilterResult r = filter(ws);
+  EXPECT_EQ(r.verdict.issue, SafetyIssue::kLegWorkspace);
+  EXPECT_NE(r.verdict.reason.find("a knee comes down to"), std::string::npos) << r.verdict.reason;
+  EXPECT_FALSE(r.speed_shortfall.has_value());
+}
+
 TEST_F(SafetyFilterOnAPlan, RejectsMotorsThatMissTheLiftOffSpeedAndSaysWhichJoint) {
   LegWorkspace weak = *cfg_.workspace;
   weak.joint_motors = {MotorLimits{23.7 / 4}, MotorLimits{23.7 / 4}, MotorLimits{35.55 / 4}};
