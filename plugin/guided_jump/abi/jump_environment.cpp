@@ -241,11 +241,10 @@ class JumpEnvironment {
     jump::SafetyCheck ballistic;
     ballistic.gravity = gravity_;
     ballistic.apex_clearance = settings_.apex_clearance;
-    const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, workspace());
+    const std::optional<jump::LegWorkspace> ws = workspace();
+    const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, ws);
     if (safety.speed_shortfall) metric("predicted_speed_shortfall", *safety.speed_shortfall);
-    if (const std::optional<jump::LegWorkspace> ws = workspace()) {
-      metric("planned_knee_clearance", jump::thrustKneeClearance(plan, mapped.action, *ws));
-    }
+    if (ws) metric("planned_knee_clearance", jump::thrustKneeClearance(plan, mapped.action, *ws));
     if (!safety.verdict) {
       throw Rejected(std::string(jump::safetyIssueName(safety.verdict.issue)) + ": " + safety.verdict.reason);
     }

@@ -156,10 +156,10 @@ void JumpController::startThrust(const pronk_robot_state& s) {
     planned_flight_time_ = std::max(0.05, flight.landingTime(standing_height_ + settings_.landing_height).value_or(0.0));
   }
   for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int f = 0; f < feet_; ++f) centroid += vec(s.foot_position + 3 * f) / feet_;
   thrust_feet_.resize(3, feet_);
   for (int f = 0; f < feet_; ++f) thrust_feet_.col(f) = vec(s.foot_position + 3 * f);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int f = 0; f < feet_; ++f) centroid += thrust_feet_.col(f) / feet_;  // the sum as before, bit for bit
   stance_offset_ = R.transpose() * (vec(s.base_position) - centroid);
   Eigen::VectorXd stance(n_);
   for (int j = 0; j < n_; ++j) stance(j) = settings_.hold.stance[j % 3];

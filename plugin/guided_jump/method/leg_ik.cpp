@@ -142,24 +142,28 @@ std::array<LegGeometry, kLegCount> aliengoLegs() {
 // ---------------------------------------------------------------------------
 // Forward kinematics and Jacobian
 
-Eigen::Vector3d footPosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
-  const double l1 = leg.thigh_length;
-  const double l2 = leg.calf_length;
-  const double x = -l1 * std::sin(q[1]) - l2 * std::sin(q[1] + q[2]);
-  const double z = -l1 * std::cos(q[1]) - l2 * std::cos(q[1] + q[2]);
+namespace {
+
+// A point (x', z') of the leg plane, at the thigh joint's offset, turned by the
+// abduction q0 about the hip axis: trunk frame.
+Eigen::Vector3d fromLegPlane(const LegGeometry& leg, double q0, double x, double z) {
   const double y = leg.side * leg.thigh_offset;
-  const double c0 = std::cos(q[0]);
-  const double s0 = std::sin(q[0]);
+  const double c0 = std::cos(q0);
+  const double s0 = std::sin(q0);
   return leg.hipPosition() + Eigen::Vector3d(x, c0 * y - s0 * z, s0 * y + c0 * z);
 }
 
+}  // namespace
+
+Eigen::Vector3d footPosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
+  const double l1 = leg.thigh_length;
+  const double l2 = leg.calf_length;
+  return fromLegPlane(leg, q[0], -l1 * std::sin(q[1]) - l2 * std::sin(q[1] + q[2]),
+                      -l1 * std::cos(q[1]) - l2 * std::cos(q[1] + q[2]));
+}
+
 Eigen::Vector3d kneePosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
-  const double x = -leg.thigh_length * std::sin(q[1]);
-  const double z = -leg.thigh_length * std::cos(q[1]);
-  const double y = leg.side * leg.thigh_offset;
-  const double c0 = std::cos(q[0]);
-  const double s0 = std::sin(q[0]);
-  return leg.hipPosition() + Eigen::Vector3d(x, c0 * y - s0 * z, s0 * y + c0 * z);
+  return fromLegPlane(leg, q[0], -leg.thigh_length * std::sin(q[1]), -leg.thigh_length * std::cos(q[1]));
 }
 
 Eigen::Matrix3d footJacobian(const LegGeometry& leg, const Eigen::Vector3d& q) {
