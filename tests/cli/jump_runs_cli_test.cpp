@@ -360,6 +360,27 @@ TEST(JumpRuns, PolicyFileOfTheWrongShapeIsABadInput) {
 
 namespace {
 
+TEST(JumpRuns, AShippedPolicyWithOneWeightChangedIsRefusedByItsChecksum) {
+  std::ifstream in(source("assets/policies/go1_flat_aim.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string changed = text.str();
+  const std::size_t row = changed.find("\"weights\": [\n        [");
+  ASSERT_NE(row, std::string::npos);
+  const std::size_t digit = changed.find_first_of("123456789", row + 24);
+  changed[digit] = changed[digit] == '9' ? '8' : static_cast<char>(changed[digit] + 1);
+  const std::string dir = outDir("changed_policy");
+  std::filesystem::create_directories(dir);
+  const std::string file = dir + "/changed.json";
+  std::ofstream(file) << changed;
+  const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy " + file + " --out " + dir + "/out");
+  EXPECT_EQ(r.status, 3) << r.output;
+  EXPECT_NE(r.output.find(file + ":"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(": checksum: sha256:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the file was changed after it was written"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/results.json"));
+}
+
 TEST(JumpRuns, ControllerFlagRunsAControllerInsteadOfTheEnvironment) {
   // forward.xml has an <environment> and no <controller>: --controller still runs one.
   const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --controller stand --duration 0.2");

@@ -128,22 +128,22 @@ TEST(PolicyFile, SaveThenLoadIsBitExact) {
   EXPECT_EQ(pronk::policyToJson(loaded), readText(path.string()));
 }
 
-TEST(PolicyFile, AResidualRecordsItsPriorInVersion2) {
+TEST(PolicyFile, AResidualRecordsItsPrior) {
   const MlpPolicy policy = pronk::loadPolicy(fixture("valid_residual.json"));
   ASSERT_TRUE(policy.prior().has_value());
   EXPECT_EQ(policy.prior()->kind, "prior_action");
   EXPECT_EQ(policy.prior()->environment, "jump");
   const std::string text = pronk::policyToJson(policy);
-  EXPECT_EQ(text.rfind("{\n  \"format\": \"pronk-policy\",\n  \"version\": 2,\n", 0), 0u) << text;
+  EXPECT_EQ(text.rfind("{\n  \"format\": \"pronk-policy\",\n  \"version\": 3,\n", 0), 0u) << text;
   const MlpPolicy again = pronk::parsePolicy(text, "residual");
   ASSERT_TRUE(again.prior().has_value());
   EXPECT_EQ(again.prior()->environment, "jump");
-  // Without a prior the file stays version 1, which older readers know.
+  // A version-2 file (valid_residual.json) and a version-1 file, both without a
+  // checksum, still read; without a prior none is written.
   EXPECT_FALSE(pronk::loadPolicy(fixture("valid.json")).prior().has_value());
   MlpPolicy plain = policy;
   plain.setPrior(std::nullopt);
   EXPECT_EQ(pronk::policyToJson(plain).find("\"prior\""), std::string::npos);
-  EXPECT_NE(pronk::policyToJson(plain).find("\"version\": 1,"), std::string::npos);
   EXPECT_THROW(plain.setPrior(pronk::PolicyPrior{"prior_action", ""}), pronk::Error);
   // An aim correction keeps its kind through a round trip; an unknown kind is refused.
   MlpPolicy aim = policy;
@@ -171,7 +171,56 @@ TEST(PolicyFile, WritesOneWeightRowPerLine) {
   const MlpPolicy policy({{w, Eigen::VectorXd::Zero(2), Activation::Tanh}});
   const std::string text = pronk::policyToJson(policy);
   EXPECT_NE(text.find("\n        [0.5,-0.25,1.0],\n        [0.0,2.0,-1.5]\n"), std::string::npos) << text;
-  EXPECT_EQ(text.rfind("{\n  \"format\": \"pronk-policy\",\n  \"version\": 1,\n", 0), 0u) << text;
+  EXPECT_EQ(text.rfind("{\n  \"format\": \"pronk-policy\",\n  \"version\": 3,\n", 0), 0u) << text;
+}
+
+// Where a line of `text` holding `needle` is (1-based), for the messages below.
+int lineOf(const std::string& text, const std::string& needle) {
+  const std::size_t at = text.find(needle);
+  return at == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+TEST(PolicyFile, TheChecksumRefusesAFileChangedAfterItWasWritten) {
+  Eigen::MatrixXd w(2, 3);
+  w << 0.5, -0.25, 1.0,
+       0.0, 2.0, -1.5;
+  MlpPolicy policy({{w, Eigen::VectorXd::Zero(2), Activation::Tanh}});
+  policy.setDescription("checksum test");
+  const std::string text = pronk::policyToJson(policy);
+  const std::size_t at = text.find("\"checksum\": \"sha256:");
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_EQ(text.find("\"", at + 20) - (at + 20), 64u) << "64 hex digits";
+  EXPECT_NO_THROW(pronk::parsePolicy(text, "as written"));
+  // The numbers are what the checksum covers, not their spelling: 0.5 as 5e-1 still reads.
+  std::string respelt = text;
+  respelt.replace(respelt.find("[0.5,"), 5, "[5e-1,");
+  EXPECT_NO_THROW(pronk::parsePolicy(respelt, "respelt"));
+
+  const auto refusal = [](const std::string& changed) -> std::string {
+    try {
+      pronk::parsePolicy(changed, "changed.json");
+    } catch (const pronk::InputError& e) {
+      return e.what();
+    }
+    return "read";
+  };
+  const std::string checksum_line = "changed.json:" + std::to_string(lineOf(text, "\"checksum\"")) + ": checksum: sha256:";
+  std::string weight = text;
+  weight.replace(weight.find("[0.5,"), 5, "[0.6,");
+  EXPECT_EQ(refusal(weight).rfind(checksum_line, 0), 0u) << refusal(weight);
+  EXPECT_NE(refusal(weight).find("does not match the file's contents (sha256:"), std::string::npos);
+  std::string description = text;
+  description.replace(description.find("checksum test"), 13, "checksum tests");
+  EXPECT_EQ(refusal(description).rfind(checksum_line, 0), 0u) << refusal(description);
+
+  std::string missing = text;
+  const std::size_t comma = missing.rfind(",\n", at);
+  missing.erase(comma, missing.find("\n", at) - comma);
+  EXPECT_NE(refusal(missing).find("checksum: missing"), std::string::npos) << refusal(missing) << "\n" << missing;
+  std::string other_kind = text;
+  other_kind.replace(at + 13, 6, "md5:00");
+  EXPECT_NE(refusal(other_kind).find("checksum: expected a string \"sha256:<64 hex digits>\""), std::string::npos)
+      << refusal(other_kind);
 }
 
 TEST(PolicyFile, SaveToAMissingFolderIsAnError) {
@@ -207,7 +256,7 @@ const std::vector<Broken> kBroken = {
     {"not_an_object.json", 1, "a policy file is a JSON object, this is array"},
     {"missing_format.json", 1, "format: missing"},
     {"wrong_format.json", 2, "format: string \"pronk-scenario\" is not \"pronk-policy\""},
-    {"version_3.json", 3, "version: 3 is not supported; this pronk reads versions 1 and 2"},
+    {"version_4.json", 3, "version: 4 is not supported; this pronk reads versions 1 to 3"},
     {"prior_in_version_1.json", 6, "prior: unknown key (known keys here: format, version, description, provenance, "
                                     "observation_size"},
     {"unknown_prior_kind.json", 6, "prior.kind: string \"ballistic\" is not a known prior (known: \"prior_action\", a residual over the "

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <climits>
 
+#include <openssl/evp.h>
+
 #include "file_replace.h"
 #include "json_text.h"
 #include "policy_checks.h"
@@ -20,7 +22,28 @@ using policy_file::Problem;
 
 constexpr const char* kFormat = "pronk-policy";
 constexpr int kVersion = 1;          // a policy whose network output is the action
-constexpr int kResidualVersion = 2;  // and one with a prior (a residual): the newest this reader knows
+constexpr int kResidualVersion = 2;  // and one with a prior (a residual)
+constexpr int kChecksumVersion = 3;  // either, with its checksum: what pronk writes, the newest this reader knows
+constexpr const char* kChecksumKind = "sha256:";
+
+// The checksum of a policy document: SHA-256 of its compact text with sorted
+// keys (nlohmann's dump()) and without the checksum itself, as "sha256:" + hex.
+std::string checksumOf(nlohmann::json doc) {
+  doc.erase("checksum");
+  const std::string text = doc.dump();
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  if (EVP_Digest(text.data(), text.size(), digest, &size, EVP_sha256(), nullptr) != 1) {
+    throw Error("policy: OpenSSL could not compute a SHA-256");
+  }
+  static const char* hex = "0123456789abcdef";
+  std::string out = kChecksumKind;
+  for (unsigned int i = 0; i < size; ++i) {
+    out += hex[digest[i] >> 4];
+    out += hex[digest[i] & 15];
+  }
+  return out;
+}
 
 // nlohmann's what() without its "[json.exception.parse_error.101] parse error
 // at line 2, column 11: " prefix: we say where ourselves.
@@ -68,7 +91,9 @@ class PolicyReader {
     std::vector<std::string> keys = {"format", "version", "description", "provenance", "observation_size",
                                      "action_size", "observation_normalization", "layers", "action_log_std"};
     if (version >= kResidualVersion) keys.insert(keys.begin() + 4, "prior");
+    if (version >= kChecksumVersion) keys.push_back("checksum");
     checkKeys(doc, root, keys);
+    if (version >= kChecksumVersion) checkChecksum(doc);
 
     const int observation_size = positiveInt(required(doc, root, "observation_size"), root.key("observation_size"));
     const int action_size = positiveInt(required(doc, root, "action_size"), root.key("action_size"));
@@ -175,7 +200,22 @@ class PolicyReader {
     return prior;
   }
 
-  // The file's version: 1 or 2.
+  // A version-3 file carries the checksum of everything else in it: a number
+  // changed by hand or by a broken copy is refused, not flown.
+  void checkChecksum(const json& doc) const {
+    const JsonPath at = JsonPath().key("checksum");
+    const json& c = required(doc, JsonPath(), "checksum");
+    if (!c.is_string() || c.get<std::string>().rfind(kChecksumKind, 0) != 0) {
+      fail(at, "expected a string \"" + std::string(kChecksumKind) + "<64 hex digits>\", got " + describe(c));
+    }
+    const std::string computed = checksumOf(doc);
+    if (c.get<std::string>() != computed) {
+      fail(at, c.get<std::string>() + " does not match the file's contents (" + computed +
+                   "): the file was changed after it was written");
+    }
+  }
+
+  // The file's version: 1, 2 or 3.
   int checkFormatAndVersion(const json& doc) const {
     const JsonPath format = JsonPath().key("format");
     if (!doc.contains("format")) {
@@ -187,9 +227,9 @@ class PolicyReader {
     const JsonPath version = JsonPath().key("version");
     const json& v = required(doc, JsonPath(), "version");
     if (!v.is_number_integer()) fail(version, "expected an integer, got " + describe(v));
-    if (v != kVersion && v != kResidualVersion) {
-      fail(version, v.dump() + " is not supported; this pronk reads versions " + std::to_string(kVersion) + " and " +
-                        std::to_string(kResidualVersion));
+    if (!(v >= kVersion && v <= kChecksumVersion)) {
+      fail(version, v.dump() + " is not supported; this pronk reads versions " + std::to_string(kVersion) + " to " +
+                        std::to_string(kChecksumVersion));
     }
     return v.get<int>();
   }
@@ -324,7 +364,7 @@ MlpPolicy loadPolicy(const std::string& path) {
 std::string policyToJson(const MlpPolicy& policy) {
   nlohmann::ordered_json doc;
   doc["format"] = kFormat;
-  doc["version"] = policy.prior() ? kResidualVersion : kVersion;
+  doc["version"] = kChecksumVersion;
   if (!policy.description().empty()) doc["description"] = policy.description();
   if (!policy.provenance().empty()) doc["provenance"] = nlohmann::ordered_json(policy.provenance());
   if (policy.prior()) {
@@ -350,6 +390,8 @@ std::string policyToJson(const MlpPolicy& policy) {
 
   std::string out;
   try {
+    // Over the numbers as the file's text gives them back (a reader parses them).
+    doc["checksum"] = checksumOf(nlohmann::json::parse(doc.dump()));
     writeValue(out, doc, 0);
   } catch (const nlohmann::json::exception& e) {  // e.g. a description that is not UTF-8
     throw Error("policy: cannot be written as JSON: " + nlohmannDetail(e.what()));
