@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -235,6 +236,38 @@ TEST(JumpRuns, TurningBackwardSidewaysCrouchesKeepTheirThighsOffTheGround) {
     const std::string reason = jump["failure_reason"].get<std::string>();
     EXPECT_NE(reason.find("_thigh' touched the terrain"), std::string::npos) << reason;
     EXPECT_LT(jump["metrics"]["planned_knee_clearance"].get<double>(), 0.01) << jump["target"].dump();
+  }
+}
+
+TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
+  // Turning jumps whose trunk lands rolled about 0.5 rad (targets of a development
+  // sample, seed 777; 3 s episodes). The landing stops the CoM over the low side's
+  // feet; the high side's feet touch with no load and flicker in and out of
+  // contact. Left out of the body wrench, they stay unloaded, and the robot
+  // balances on two feet until a thigh touches the ground, in all three. Shared
+  // by every foot once all have touched down, the wrench loads them.
+  auto run = [](const std::string& name, const std::string& params) {
+    const std::string dir = outDir(name);
+    const CommandRun r =
+        pronk("run " + testScenario("go1_rolled_landings.xml") + " --policy ballistic --out " + dir + params);
+    const nlohmann::json j = results(dir);
+    EXPECT_EQ(j.size(), 3u) << r.output;
+    return std::make_pair(r.status, j);
+  };
+  const auto [status, jumps] = run("jump_rolled_landings", "");
+  EXPECT_EQ(status, 0);
+  for (const nlohmann::json& jump : jumps) {
+    EXPECT_EQ(jump["status"], "ok") << jump["target"].dump() << " " << jump["failure_reason"];
+    EXPECT_TRUE(jump["ended_standing"].get<bool>()) << jump["target"].dump();
+    EXPECT_LT(jump["error_xy"].get<double>(), 0.2) << jump["target"].dump();
+    EXPECT_GT(std::abs(jump["metrics"]["touchdown_roll"].get<double>()), 0.3) << jump["target"].dump();
+  }
+  const auto [contact_status, contact] = run("jump_rolled_landings_contact", " --param landing_feet=contact");
+  EXPECT_EQ(contact_status, 4);
+  for (const nlohmann::json& jump : contact) {
+    EXPECT_EQ(jump["status"], "failed") << jump["target"].dump();
+    EXPECT_NE(jump["failure_reason"].get<std::string>().find("touched the terrain"), std::string::npos)
+        << jump["failure_reason"];
   }
 }
 

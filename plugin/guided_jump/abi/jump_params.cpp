@@ -46,6 +46,10 @@ const pronk_param_decl kStanceFeet = {
     kDeclSize, "stance_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "anchored", "",
     "thrust: each stance foot's IK target is where it stood when the thrust began (anchored: a foot the thrust "
     "unloads presses back down) or where it is now (measured, the paper's)"};
+const pronk_param_decl kLandingFeet = {
+    kDeclSize, "landing_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "all", "",
+    "landing: once every foot has touched down, the body wrench is shared by all the feet (all) or only by those "
+    "in contact now (contact, the controller before session 16)"};
 // Both factories too, but each with its own default (see the lists below).
 pronk_param_decl feedforwardDecl(const char* default_value) {
   return {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, default_value, "", kFeedforwardDoc};
@@ -80,6 +84,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back(kMomentumGain);
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
+    d.push_back(kLandingFeet);
     return d;
   }();
   return decls;
@@ -100,6 +105,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kMomentumGain,
         kLegIk,
         kStanceFeet,
+        kLandingFeet,
         {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
          "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
@@ -162,6 +168,11 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
     throw InvalidArgument("parameter 'stance_feet': '" + feet + "' is neither anchored nor measured");
   }
   s->anchored_stance_feet = feet == "anchored";
+  const std::string landing = read.string("landing_feet");
+  if (landing != "all" && landing != "contact") {
+    throw InvalidArgument("parameter 'landing_feet': '" + landing + "' is neither all nor contact");
+  }
+  s->landing_all_feet = landing == "all";
 }
 
 jump::MotorModel motorModelFromName(const std::string& name) {

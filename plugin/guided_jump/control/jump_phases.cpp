@@ -330,10 +330,10 @@ void JumpController::landingReference(const pronk_robot_state& s) {
 }
 
 void JumpController::applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force,
-                                     const Eigen::Vector3d& moment, Eigen::Ref<Eigen::VectorXd> tau) {
+                                     const Eigen::Vector3d& moment, Eigen::Ref<Eigen::VectorXd> tau, bool every_foot) {
   std::vector<int> contact;
   for (int f = 0; f < feet_; ++f) {
-    if (s.foot_in_contact[f]) contact.push_back(f);
+    if (every_foot || s.foot_in_contact[f]) contact.push_back(f);
   }
   if (contact.empty()) return;
   Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
@@ -383,7 +383,10 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
     const Eigen::Matrix3d yaw = Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Vector3d moment = mass_ * (yaw * Eigen::Vector3d(-kLandingTilt * rpy.x(), -kLandingTilt * rpy.y(), 0.0) -
                                             kLandingTiltDamping * vec(s.base_angular_velocity));
-    applyBodyWrench(s, force, moment, tau);
+    // A foot that touches with no load flickers in and out of contact; left out
+    // of the wrench, it stays unloaded, and the robot balances on the other
+    // side's feet until it tips over them (docs/results.md).
+    applyBodyWrench(s, force, moment, tau, settings_.landing_all_feet && all_down_seen_);
   }
   saturate(s, tau);
 }

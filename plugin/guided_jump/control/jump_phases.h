@@ -78,6 +78,9 @@ struct JumpSettings {
   // began (true), or where it is now (false, the paper's). A foot the thrust has
   // unloaded then presses back down instead of floating with its leg.
   bool anchored_stance_feet = true;
+  // Landing: once every foot has touched down, the body wrench is shared by all
+  // the feet, not only those the host reports in contact now (false: those).
+  bool landing_all_feet = true;
   std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
 };
 
@@ -182,10 +185,12 @@ class JumpController {
   // Landing: joint PD plus the body wrench that stops the CoM where it touched
   // down, levels the trunk and carries the weight, spread over the feet in contact.
   void landingTorques(const pronk_robot_state& s, double kp, double* torque);
-  // tau -= sum over the feet in contact of J_i^T f_i, f = the minimum-norm forces
-  // that put (force, moment about the CoM) on the body (method/force_distribution.h).
+  // tau -= sum over the feet in contact (every_foot: all feet) of J_i^T f_i, f = the
+  // minimum-norm forces that put (force, moment about the CoM) on the body
+  // (method/force_distribution.h).
   void applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force, const Eigen::Vector3d& moment,
-                       Eigen::Ref<Eigen::VectorXd> tau);
+                       Eigen::Ref<Eigen::VectorXd> tau,
+                       bool every_foot = false);
   // Keeps tau as commandedTorque(), then clamps it to what each motor delivers at its speed (throws if not finite).
   void saturate(const pronk_robot_state& state, Eigen::Ref<Eigen::VectorXd> tau);
 
