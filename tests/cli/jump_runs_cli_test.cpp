@@ -239,6 +239,33 @@ TEST(JumpRuns, TurningBackwardSidewaysCrouchesKeepTheirThighsOffTheGround) {
   }
 }
 
+TEST(JumpRuns, AJumpAndItsMirrorImageLandMirrored) {
+  // The Go1 is left-right symmetric, and so are the planner and the controller: a
+  // jump to (x, -y, -yaw) plans the mirrored action (the signs of the lift-off
+  // roll, yaw and their rates flip) and lands as the mirror image of the jump to
+  // (x, y, yaw), up to what the simulation's order of operations breaks.
+  const std::string dir = outDir("jump_mirror_pairs");
+  const CommandRun r = pronk("run " + testScenario("go1_mirror_pairs.xml") + " --policy ballistic --out " + dir);
+  EXPECT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(dir);
+  ASSERT_EQ(j.size(), 4u) << r.output;
+  for (int pair = 0; pair < 2; ++pair) {
+    const nlohmann::json& a = j[2 * pair];
+    const nlohmann::json& b = j[2 * pair + 1];
+    ASSERT_EQ(a["status"], "ok") << a["case"];
+    ASSERT_EQ(b["status"], "ok") << b["case"];
+    for (const char* flipped : {"action_liftoff_roll_rate", "action_liftoff_yaw", "action_liftoff_yaw_rate"}) {
+      EXPECT_NEAR(a["metrics"][flipped].get<double>(), -b["metrics"][flipped].get<double>(), 1e-9)
+          << a["case"] << " " << flipped;
+    }
+    EXPECT_NEAR(a["metrics"]["action_liftoff_speed"].get<double>(), b["metrics"]["action_liftoff_speed"].get<double>(),
+                1e-9);
+    EXPECT_NEAR(a["landing"]["x"].get<double>(), b["landing"]["x"].get<double>(), 0.005) << a["case"];
+    EXPECT_NEAR(a["landing"]["y"].get<double>(), -b["landing"]["y"].get<double>(), 0.005) << a["case"];
+    EXPECT_NEAR(a["landing"]["yaw"].get<double>(), -b["landing"]["yaw"].get<double>(), 0.01) << a["case"];
+  }
+}
+
 TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
   // Turning jumps whose trunk lands rolled about 0.5 rad (targets of a development
   // sample, seed 777; 3 s episodes). The landing stops the CoM over the low side's
