@@ -159,7 +159,7 @@ std::string distancePlot(const std::vector<JumpRow>& rows, const PlotContext& c,
   g.line("set xrange " + range);
   g.line("set yrange " + range);
   g.line("set size ratio -1");
-  g.line("set key inside top left box opaque");
+  g.line("set key inside top left vertical box opaque");
   const std::string diagonal = "x with lines dt 2 lw 1.5 lc rgb \"black\" title \"landed = target\"";
   g.line("set title " + quoted("forward targets (x >= 0): " + std::to_string(forward) + " jumps"));
   g.line(plotCommand(g, {fwd_ok, fwd_fail}, diagonal));
