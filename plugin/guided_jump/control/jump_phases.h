@@ -9,8 +9,8 @@
 //              is down to 0.1 s + kExtensionLead: 0.1 s smoothstep back to the stance, same gains
 //   landing    from touchdown (any foot in contact): joint PD towards a level trunk at the stance
 //              height over the feet (IK for the feet in contact, the stance joints for the others),
-//              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation (feet in
-//              contact) once every foot has touched down
+//              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation once
+//              every foot has touched down, over all four feet (landing_all_feet) or those in contact
 //
 // Thrust and explosive (t = time since the thrust began). The plan lives in the
 // start frame S: origin on the ground below the CoM at the thrust start, z up, x
@@ -183,7 +183,7 @@ class JumpController {
   Eigen::Vector3d legIk(int foot, const Eigen::Vector3d& foot_base);
   Eigen::Matrix3d legJacobian(int foot, const Eigen::VectorXd& q);
   // Landing: joint PD plus the body wrench that stops the CoM where it touched
-  // down, levels the trunk and carries the weight, spread over the feet in contact.
+  // down, levels the trunk and carries the weight, spread over the feet (applyBodyWrench).
   void landingTorques(const pronk_robot_state& s, double kp, double* torque);
   // tau -= sum over the feet in contact (every_foot: all feet) of J_i^T f_i, f = the
   // minimum-norm forces that put (force, moment about the CoM) on the body
