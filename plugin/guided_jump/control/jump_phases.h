@@ -9,8 +9,9 @@
 //              is down to 0.1 s + kExtensionLead: 0.1 s smoothstep back to the stance, same gains
 //   landing    from touchdown (any foot in contact): joint PD towards a level trunk at the stance
 //              height over the feet (IK for the feet in contact, the stance joints for the others),
-//              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation once
-//              every foot has touched down, over all four feet (landing_all_feet) or those in contact
+//              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation over
+//              the feet in contact, and over all four once every foot has touched down
+//              (landing_all_feet)
 //
 // Thrust and explosive (t = time since the thrust began). The plan lives in the
 // start frame S: origin on the ground below the CoM at the thrust start, z up, x
