@@ -15,7 +15,7 @@ esac
 # Every build and run dependency, from Debian's archive.
 PACKAGES="build-essential cmake pkg-config
   libsimbody-dev liburdfdom-dev libtinyxml2-dev libeigen3-dev libassimp-dev
-  libcli11-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libfreetype-dev fonts-dejavu-core gnuplot-nox libssl-dev"
 

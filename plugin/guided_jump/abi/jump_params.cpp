@@ -2,9 +2,10 @@
 
 #include <string>
 
+#include <fmt/format.h>
+
 #include "abi/abi_boundary.h"
 #include "method/action_mapping.h"
-#include "method/string_format.h"
 
 namespace pronk::guided_jump {
 namespace {
@@ -59,7 +60,7 @@ std::string rangeText(bool upper) {
   const jump::ActionRanges r = jump::go1ActionRanges();
   std::string text;
   for (int i = 0; i < jump::kActionSize; ++i) {
-    text += (i ? " " : "") + jump::format("%.15g", upper ? r.bounds[i].max : r.bounds[i].min);
+    text += (i ? " " : "") + fmt::format("{:.15g}", upper ? r.bounds[i].max : r.bounds[i].min);
   }
   return text;
 }

@@ -1,12 +1,10 @@
 #include "method/ballistics.h"
 
-#include "method/string_format.h"
-
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 namespace pronk::jump {
 
@@ -19,7 +17,7 @@ bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 void requireFinite(const Eigen::Vector3d& v, const char* what) {
   if (!finite(v)) {
-    throw std::invalid_argument(format("ballistics: %s (%g, %g, %g) is not finite", what, v.x(), v.y(), v.z()));
+    throw std::invalid_argument(fmt::format("ballistics: {} ({:g}, {:g}, {:g}) is not finite", what, v.x(), v.y(), v.z()));
   }
 }
 
@@ -27,7 +25,7 @@ void requireFinite(const Eigen::Vector3d& v, const char* what) {
 double downwardGravity(const Eigen::Vector3d& gravity) {
   requireFinite(gravity, "gravity");
   if (!(gravity.z() < 0.0)) {
-    throw std::invalid_argument(format("ballistics: gravity (%g, %g, %g) m/s^2 must have a negative z component",
+    throw std::invalid_argument(fmt::format("ballistics: gravity ({:g}, {:g}, {:g}) m/s^2 must have a negative z component",
                                        gravity.x(), gravity.y(), gravity.z()));
   }
   return -gravity.z();
@@ -38,7 +36,7 @@ double verticalGravity(const Eigen::Vector3d& gravity, const char* who) {
   const double g = downwardGravity(gravity);
   if (std::hypot(gravity.x(), gravity.y()) > 1e-12 * gravity.norm()) {
     throw std::invalid_argument(
-        format("%s: needs gravity along -z, got (%g, %g, %g) m/s^2", who, gravity.x(), gravity.y(), gravity.z()));
+        fmt::format("{}: needs gravity along -z, got ({:g}, {:g}, {:g}) m/s^2", who, gravity.x(), gravity.y(), gravity.z()));
   }
   return g;
 }
@@ -137,7 +135,7 @@ LiftOffVelocity liftOffVelocityForFlightTime(const Eigen::Vector3d& lift_off_pos
   downwardGravity(gravity);
   if (!(flight_time > 0.0) || !std::isfinite(flight_time)) {
     throw std::invalid_argument(
-        format("liftOffVelocityForFlightTime: flight time %g s must be positive and finite", flight_time));
+        fmt::format("liftOffVelocityForFlightTime: flight time {:g} s must be positive and finite", flight_time));
   }
   const Eigen::Vector3d v = (target - lift_off_position - 0.5 * gravity * flight_time * flight_time) / flight_time;
   return makeSolution(v, flight_time, gravity);
@@ -150,8 +148,8 @@ std::optional<LiftOffVelocity> liftOffVelocityForHorizontalSpeed(const Eigen::Ve
   requireFinite(target, "target");
   verticalGravity(gravity, "liftOffVelocityForHorizontalSpeed");
   if (!(horizontal_speed > 0.0) || !std::isfinite(horizontal_speed)) {
-    throw std::invalid_argument(format(
-        "liftOffVelocityForHorizontalSpeed: horizontal speed %g m/s must be positive and finite", horizontal_speed));
+    throw std::invalid_argument(fmt::format(
+        "liftOffVelocityForHorizontalSpeed: horizontal speed {:g} m/s must be positive and finite", horizontal_speed));
   }
   const double h = (target - lift_off_position).head<2>().norm();
   if (h < 1e-12) return std::nullopt;
@@ -171,8 +169,8 @@ LiftOffHyperbola::LiftOffHyperbola(const Eigen::Vector3d& lift_off_position, con
   h_ = delta.head<2>().norm();
   dz_ = delta.z();
   if (h_ < 1e-9) {
-    throw std::invalid_argument(format(
-        "LiftOffHyperbola: target is %g m horizontally from the lift-off point; a vertical jump has no hyperbola "
+    throw std::invalid_argument(fmt::format(
+        "LiftOffHyperbola: target is {:g} m horizontally from the lift-off point; a vertical jump has no hyperbola "
         "(use liftOffVelocityForFlightTime)",
         h_));
   }
@@ -183,7 +181,7 @@ LiftOffHyperbola::LiftOffHyperbola(const Eigen::Vector3d& lift_off_position, con
 double LiftOffHyperbola::verticalSpeed(double horizontal_speed) const {
   if (!(horizontal_speed > 0.0) || !std::isfinite(horizontal_speed)) {
     throw std::invalid_argument(
-        format("LiftOffHyperbola: horizontal speed %g m/s must be positive and finite", horizontal_speed));
+        fmt::format("LiftOffHyperbola: horizontal speed {:g} m/s must be positive and finite", horizontal_speed));
   }
   return dz_ * horizontal_speed / h_ + g_ * h_ / (2.0 * horizontal_speed);
 }
@@ -196,7 +194,7 @@ LiftOffVelocity LiftOffHyperbola::atHorizontalSpeed(double horizontal_speed) con
 
 LiftOffVelocity LiftOffHyperbola::atFlightTime(double flight_time) const {
   if (!(flight_time > 0.0) || !std::isfinite(flight_time)) {
-    throw std::invalid_argument(format("LiftOffHyperbola: flight time %g s must be positive and finite", flight_time));
+    throw std::invalid_argument(fmt::format("LiftOffHyperbola: flight time {:g} s must be positive and finite", flight_time));
   }
   return atHorizontalSpeed(h_ / flight_time);
 }

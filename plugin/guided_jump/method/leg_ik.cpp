@@ -1,15 +1,13 @@
 #include "method/leg_ik.h"
 
-#include "method/string_format.h"
-
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 namespace pronk::jump {
 
@@ -99,21 +97,21 @@ void LegGeometry::check() const {
                  {"calf_length", calf_length}};
   for (const auto& l : lengths) {
     if (!std::isfinite(l.value) || l.value < 0.0) {
-      throw std::invalid_argument(format("LegGeometry: %s = %g m must be finite and >= 0", l.name, l.value));
+      throw std::invalid_argument(fmt::format("LegGeometry: {} = {:g} m must be finite and >= 0", l.name, l.value));
     }
   }
   if (thigh_length == 0.0 || calf_length == 0.0) {
     throw std::invalid_argument(
-        format("LegGeometry: thigh_length %g m and calf_length %g m must be positive", thigh_length, calf_length));
+        fmt::format("LegGeometry: thigh_length {:g} m and calf_length {:g} m must be positive", thigh_length, calf_length));
   }
   if (std::abs(side) != 1.0 || std::abs(front) != 1.0) {
-    throw std::invalid_argument(format("LegGeometry: side %g and front %g must be +1 or -1", side, front));
+    throw std::invalid_argument(fmt::format("LegGeometry: side {:g} and front {:g} must be +1 or -1", side, front));
   }
   static const char* const kJointNames[] = {"hip", "thigh", "calf"};
   for (int j = 0; j < 3; ++j) {
     if (std::isnan(limits[j].min) || std::isnan(limits[j].max) || limits[j].min > limits[j].max) {
       throw std::invalid_argument(
-          format("LegGeometry: %s limits [%g, %g] rad are not a range", kJointNames[j], limits[j].min, limits[j].max));
+          fmt::format("LegGeometry: {} limits [{:g}, {:g}] rad are not a range", kJointNames[j], limits[j].min, limits[j].max));
     }
   }
 }
@@ -281,19 +279,19 @@ LegIkResult solveLegIk(const LegGeometry& leg, const Eigen::Vector3d& foot_in_tr
     case LegIkStatus::kOk:
       break;
     case LegIkStatus::kNotFinite:
-      result.message = format("foot position (%g, %g, %g) m is not finite", p.x(), p.y(), p.z());
+      result.message = fmt::format("foot position ({:g}, {:g}, {:g}) m is not finite", p.x(), p.y(), p.z());
       return result;
     case LegIkStatus::kInsideHipOffset:
-      result.message = format("foot (%.4f, %.4f, %.4f) m is %.4f m from the hip axis, inside the thigh offset %.4f m",
+      result.message = fmt::format("foot ({:.4f}, {:.4f}, {:.4f}) m is {:.4f} m from the hip axis, inside the thigh offset {:.4f} m",
                               p.x(), p.y(), p.z(), std::sqrt(lr.rho2), d);
       return result;
     case LegIkStatus::kTooFar:
-      result.message = format("foot (%.4f, %.4f, %.4f) m is %.4f m from the thigh joint; the leg reaches %.4f m",
+      result.message = fmt::format("foot ({:.4f}, {:.4f}, {:.4f}) m is {:.4f} m from the thigh joint; the leg reaches {:.4f} m",
                               p.x(), p.y(), p.z(), lr.reach, l1 + l2);
       return result;
     case LegIkStatus::kTooClose:
       result.message =
-          format("foot (%.4f, %.4f, %.4f) m is %.4f m from the thigh joint; the leg folds to %.4f m at least", p.x(),
+          fmt::format("foot ({:.4f}, {:.4f}, {:.4f}) m is {:.4f} m from the thigh joint; the leg folds to {:.4f} m at least", p.x(),
                  p.y(), p.z(), lr.reach, std::abs(l1 - l2));
       return result;
   }
@@ -343,9 +341,9 @@ JointVelocityResult jointVelocitiesForFootVelocity(const LegGeometry& leg, const
     return result;
   }
   result.singular = true;
-  result.message = format(
-      "leg Jacobian is singular at q = (%.4f, %.4f, %.4f) rad: least singular value %.3g m/rad "
-      "< %.3g; joint velocities are the least-squares solution without the singular directions",
+  result.message = fmt::format(
+      "leg Jacobian is singular at q = ({:.4f}, {:.4f}, {:.4f}) rad: least singular value {:.3g} m/rad "
+      "< {:.3g}; joint velocities are the least-squares solution without the singular directions",
       q[0], q[1], q[2], sigma[2], singularity_threshold);
   const Eigen::Vector3d ut_v = svd.matrixU().transpose() * foot_velocity_trunk;
   Eigen::Vector3d scaled = Eigen::Vector3d::Zero();

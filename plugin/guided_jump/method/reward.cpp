@@ -1,12 +1,10 @@
 #include "method/reward.h"
 
-#include "method/string_format.h"
-
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 namespace pronk::jump {
 
@@ -16,15 +14,15 @@ namespace {
 void requireSize(Eigen::Index size, Eigen::Index expected, const char* what, int tick) {
   if (size == expected) return;
   if (tick < 0) {
-    throw std::invalid_argument(format("JumpRecord: %s has %ld entries, expected %ld", what, static_cast<long>(size),
+    throw std::invalid_argument(fmt::format("JumpRecord: {} has {} entries, expected {}", what, static_cast<long>(size),
                                        static_cast<long>(expected)));
   }
-  throw std::invalid_argument(format("JumpRecord: tick %d: %s has %ld entries, expected %ld", tick, what,
+  throw std::invalid_argument(fmt::format("JumpRecord: tick {}: {} has {} entries, expected {}", tick, what,
                                      static_cast<long>(size), static_cast<long>(expected)));
 }
 
 void requireSetting(bool ok, const char* name, double value, const char* domain) {
-  if (!ok) throw std::invalid_argument(format("RewardSettings: %s = %g must be %s", name, value, domain));
+  if (!ok) throw std::invalid_argument(fmt::format("RewardSettings: {} = {:g} must be {}", name, value, domain));
 }
 
 }  // namespace
@@ -193,7 +191,7 @@ std::map<std::string, double> RewardBreakdown::asMap() const {
 RewardBreakdown computeReward(const JumpRecord& record, const RewardSettings& settings) {
   settings.check();
   if (!(record.tick_s > 0.0) || !std::isfinite(record.tick_s)) {
-    throw std::invalid_argument(format("JumpRecord: tick_s = %g s must be positive and finite", record.tick_s));
+    throw std::invalid_argument(fmt::format("JumpRecord: tick_s = {:g} s must be positive and finite", record.tick_s));
   }
   const JointLimits& limits = record.joint_limits;
   const Eigen::Index joints = limits.position_min.size();

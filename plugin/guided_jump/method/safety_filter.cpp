@@ -6,9 +6,10 @@
 #include <cmath>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "method/force_distribution.h"
 #include "method/orientation_trajectory.h"
-#include "method/string_format.h"
 
 namespace pronk::jump {
 
@@ -40,7 +41,7 @@ SafetyVerdict SafetyCheck::operator()(const FlightState& lift_off, const Eigen::
   const Eigen::Vector3d& v = lift_off.velocity;
   if (!p.allFinite() || !v.allFinite() || !target.allFinite()) {
     return {SafetyIssue::kNotFinite,
-            format("lift-off position (%g, %g, %g) m, velocity (%g, %g, %g) m/s or target (%g, %g, %g) m is not finite",
+            fmt::format("lift-off position ({:g}, {:g}, {:g}) m, velocity ({:g}, {:g}, {:g}) m/s or target ({:g}, {:g}, {:g}) m is not finite",
                    p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), target.x(), target.y(), target.z())};
   }
   const BallisticFlight flight(lift_off, gravity);
@@ -48,27 +49,27 @@ SafetyVerdict SafetyCheck::operator()(const FlightState& lift_off, const Eigen::
   const double apex = flight.apexHeight();
   if (apex < target.z() + apex_clearance) {
     return {SafetyIssue::kApexBelowTarget,
-            format("apex at z = %.4f m (lift-off z = %.4f m, v_z = %.4f m/s) is below the target height %.4f m + "
-                   "clearance %.4f m",
+            fmt::format("apex at z = {:.4f} m (lift-off z = {:.4f} m, v_z = {:.4f} m/s) is below the target height {:.4f} m + "
+                   "clearance {:.4f} m",
                    apex, p.z(), v.z(), target.z(), apex_clearance)};
   }
 
   const auto landing = flight.landingPoint(target.z());
   if (!landing) {
     return {SafetyIssue::kTargetUnreachable,
-            format("the CoM never comes back down to the target height %.4f m (apex %.4f m)", target.z(), apex)};
+            fmt::format("the CoM never comes back down to the target height {:.4f} m (apex {:.4f} m)", target.z(), apex)};
   }
   const double miss = (landing->head<2>() - target.head<2>()).norm();
   if (miss > max_landing_miss) {
     return {SafetyIssue::kTargetUnreachable,
-            format("the CoM comes down through z = %.4f m at (%.4f, %.4f) m, %.4f m from the target (%.4f, %.4f) m; "
-                   "at most %.4f m is allowed",
+            fmt::format("the CoM comes down through z = {:.4f} m at ({:.4f}, {:.4f}) m, {:.4f} m from the target ({:.4f}, {:.4f}) m; "
+                   "at most {:.4f} m is allowed",
                    target.z(), landing->x(), landing->y(), miss, target.x(), target.y(), max_landing_miss)};
   }
 
   if (workspace && !workspace(p)) {
     return {SafetyIssue::kOutsideWorkspace,
-            format("lift-off position (%.4f, %.4f, %.4f) m is outside the leg workspace", p.x(), p.y(), p.z())};
+            fmt::format("lift-off position ({:.4f}, {:.4f}, {:.4f}) m is outside the leg workspace", p.x(), p.y(), p.z())};
   }
   return {};
 }
