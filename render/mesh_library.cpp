@@ -1,6 +1,7 @@
 #include "render/mesh_library.h"
 
 #include <assimp/Importer.hpp>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -119,7 +120,9 @@ const TriangleMesh* MeshLibrary::load(const std::string& path, const Eigen::Vect
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second.get();
   Assimp::Importer importer;
-  // PreTransformVertices bakes the file's node transforms (and COLLADA units) in.
+  // The URDF places the mesh in its own file frame: a COLLADA <up_axis> must not rotate it (as the
+  // collision bounds in pronk_model). PreTransformVertices bakes the node transforms and units in.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_GenSmoothNormals |
                                                      aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
   std::unique_ptr<TriangleMesh> mesh;

@@ -158,6 +158,36 @@ TEST(Render, UnreadableMeshIsAWarningAndAPrimitive) {
   EXPECT_NE(warnings[0].find("not_a_mesh.obj"), std::string::npos);
 }
 
+TEST(Render, AZUpColladaMeshKeepsItsFileFrame) {
+  // The vendors' Unitree DAE files declare <up_axis>Z_UP</up_axis>; the URDF places a mesh in
+  // its file frame, so the declaration must not turn it. The fixture is a bar 0.6 m long along
+  // the file's z (from -0.2 to +0.4 m), put on the trunk: seen from the side it stands upright
+  // above the trunk, where the plain robot has sky. Turned, it would point at the camera.
+  Episode e(0.05);
+  RobotDescription robot = e.robot;
+  VisualShape& trunk = robot.bodies[0].visuals.at(0);
+  trunk.mesh_path = std::string(PRONK_SOURCE_DIR) + "/tests/fixtures/meshes/zup_bar.dae";
+  trunk.mesh_scale = Eigen::Vector3d::Ones();
+  trunk.pose_body = Eigen::Isometry3d::Identity();
+  std::vector<std::string> warnings;
+  const int w = 320, h = 240;
+  SceneRenderer renderer(w, h, robot, e.terrain, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  const Camera camera = sideCamera();
+  const TraceSample& s = e.trace.samples.back();
+  std::vector<uint8_t> rgba;
+  renderer.render(camera, SceneMarkers{}, {s.body_poses, s.foot_position, s.foot_in_contact}, rgba);
+  const Eigen::Isometry3d& pose = s.body_poses.at(0);
+  Eigen::Vector2d at;
+  for (double z : {0.2, 0.3, 0.35}) {
+    ASSERT_TRUE(project(camera, w, h, pose * Eigen::Vector3d(0, 0, z), at));
+    EXPECT_GT((pixel(rgba, w, at) - kSkyColour).norm(), 0.2) << "no bar " << z << " m above the trunk";
+  }
+  // Beside the bar, as high up, there is sky.
+  ASSERT_TRUE(project(camera, w, h, pose * Eigen::Vector3d(0.12, 0, 0.3), at));
+  EXPECT_LT((pixel(rgba, w, at) - kSkyColour).norm(), 0.05);
+}
+
 TEST(Render, PhasesComeFromLiftOffAndTouchdown) {
   Trace t;
   t.samples.resize(2);

@@ -165,6 +165,23 @@ TEST(RobotDescription, PackageUrisResolveThroughSearchPaths) {
 }
 
 }  // namespace
+TEST(RobotDescription, AZUpColladaCollisionMeshIsBoundedInItsFileFrame) {
+  // The fixture declares Z_UP (as the vendors' Unitree DAE files do): a 0.04 x 0.04 x 0.6 m bar
+  // along the file's z, centred at z = 0.1. Its bounds stay along z, not turned onto y.
+  const std::string mesh = std::string(PRONK_SOURCE_DIR) + "/tests/fixtures/meshes/zup_bar.dae";
+  const std::string path = writeTemp(
+      "zup_mesh.urdf", std::string("<robot name='r'>\n<link name='a'>") + kLink +
+                           "<collision><geometry><mesh filename='" + mesh + "'/></geometry></collision>"
+                           "</link>\n</robot>");
+  const RobotDescription robot = loadUrdf(path);
+  ASSERT_EQ(robot.bodies[0].collisions.size(), 1u);
+  const CollisionShape& c = robot.bodies[0].collisions[0];
+  EXPECT_TRUE(c.from_mesh);
+  EXPECT_TRUE(c.shape.box_size.isApprox(Eigen::Vector3d(0.04, 0.04, 0.6), 1e-6)) << c.shape.box_size.transpose();
+  EXPECT_TRUE(c.shape.pose_body.translation().isApprox(Eigen::Vector3d(0, 0, 0.1), 1e-6))
+      << c.shape.pose_body.translation().transpose();
+}
+
 TEST(RobotDescription, AKinematicLoopIsRefusedAtItsJointNotFollowedForever) {
   // urdfdom accepts a link that is the child of two joints; the builder used to
   // recurse until the stack overflowed.

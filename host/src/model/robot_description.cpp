@@ -5,6 +5,7 @@
 #include "pronk/file_io.h"
 
 #include <assimp/Importer.hpp>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <console_bridge/console.h>
@@ -378,6 +379,9 @@ class Builder {
   std::optional<Shape> meshBoundingBox(const std::string& path, const Eigen::Vector3d& scale,
                                        const Eigen::Isometry3d& pose) const {
     Assimp::Importer importer;
+    // The URDF places the mesh in its own file frame: a COLLADA <up_axis> must not rotate it
+    // (the vendors' Z_UP files would otherwise lie on their side).
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_PreTransformVertices);
     if (!scene) return std::nullopt;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e30), hi = Eigen::Vector3d::Constant(-1e30);
