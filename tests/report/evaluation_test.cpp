@@ -158,11 +158,12 @@ TEST(EvaluationSetDir, ResumesOnlyTheSameRunAndListsWhatIsLeft) {
   }
 }
 
-TEST(JumpsCsv, HasAHeaderAndOneLinePerRowWithTheSweepVariables) {
+TEST(JumpsCsv, HasAHeaderAndOneLinePerRowWithTheSweepVariablesAndRfc4180Text) {
   const std::string dir = tempDir("csv");
   JumpRow a = row(0, "ok", 0.3, 0.31), b = row(1, "rejected", 1.0, 0);
   a.assignments = {{"joints.damping", 0.25}};
-  b.reason = "no \"plan\"";
+  b.reason = "no \"plan\", none";
+  b.label = "x = 1, y = 0";
   pronk::writeJumpsCsv({a, b}, dir + "/jumps.csv");
   std::ifstream in(dir + "/jumps.csv");
   std::string header, first, second, extra;
@@ -173,7 +174,9 @@ TEST(JumpsCsv, HasAHeaderAndOneLinePerRowWithTheSweepVariables) {
   EXPECT_NE(header.find(",joints.damping,reason"), std::string::npos) << header;
   EXPECT_NE(first.find(",0.25,"), std::string::npos) << first;
   EXPECT_NE(second.find("rejected"), std::string::npos) << second;
-  EXPECT_NE(second.find("\"no 'plan'\""), std::string::npos) << second;
+  // RFC 4180: text quoted, a quote doubled, the comma kept inside the quotes.
+  EXPECT_NE(second.find(",\"x = 1, y = 0\","), std::string::npos) << second;
+  EXPECT_NE(second.find(",\"no \"\"plan\"\", none\""), std::string::npos) << second;
 }
 
 }  // namespace

@@ -20,4 +20,15 @@ inline std::string csvCell(double v) {
   return text;
 }
 
+// A text cell as RFC 4180 has it: always quoted, a quote doubled; commas and
+// line breaks stay inside the quotes, so a reason or label reads back as written.
+inline std::string csvText(const std::string& s) {
+  std::string cell = "\"";
+  for (char c : s) {
+    if (c == '"') cell += '"';
+    cell += c;
+  }
+  return cell + '"';
+}
+
 }  // namespace pronk::report_cells

@@ -18,6 +18,7 @@ namespace pronk {
 namespace {
 
 using report_cells::csvCell;
+using report_cells::csvText;
 using report_cells::number;
 
 constexpr double kDeg = 180.0 / M_PI;
@@ -34,12 +35,6 @@ std::string textOf(const nlohmann::json& j, const char* key, const std::string& 
   const auto it = j.find(key);
   if (it == j.end() || !it->is_string()) throw Error(where + ": the jump record has no text \"" + key + "\"");
   return it->get<std::string>();
-}
-
-std::string csvText(std::string s) {
-  for (char& c : s)
-    if (c == '"' || c == '\n') c = '\'';
-  return '"' + s + '"';
 }
 
 // 64-bit FNV-1a, fed piece by piece.

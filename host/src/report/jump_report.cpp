@@ -13,6 +13,7 @@ namespace pronk {
 namespace {
 
 using report_cells::csvCell;
+using report_cells::csvText;
 using report_cells::number;
 
 constexpr double kDeg = 180.0 / M_PI;
@@ -214,17 +215,14 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
   json_.push_back(std::move(j));
 
   auto ev = [&](const char* name) { return csvCell(event(trace, name) ? event(trace, name)->time : NAN); };
-  std::string reason = o.reason;
-  for (char& c : reason)
-    if (c == '"') c = '\'';
-  std::string row = '"' + r.episode.label + "\",";
+  std::string row = csvText(r.episode.label) + ',';
   for (double v : {t.x, t.y, t.z, t.yaw, l.displacement.x(), l.displacement.y(), l.displacement.z(), l.yaw, l.error_xy,
                    l.error_yaw * kDeg}) {
     row += csvCell(v) + ',';
   }
   row += o.status + ',' + csvCell(r.result.reward) + ',' + ev("lift_off") + ',' + ev("touchdown") + ',' + ev("at_rest") + ',';
   for (const MetricSpec* spec : tableColumns(schema_)) row += csvCell(metricOrNaN(trace, spec->name.c_str())) + ',';
-  row += std::string(l.standing && o.status != "failed" ? "1" : "0") + ",\"" + reason + "\"\n";
+  row += std::string(l.standing && o.status != "failed" ? "1" : "0") + "," + csvText(o.reason) + '\n';
   csv_ += row;
 }
 
