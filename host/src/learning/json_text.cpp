@@ -2,8 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
-#include <cstring>
+#include <iterator>
 #include <map>
 
 namespace pronk::policy_file {
@@ -47,201 +46,197 @@ TextPosition positionOf(const std::string& text, std::size_t offset) {
   return p;
 }
 
+// Where a value is written, and for an object or array the node of its insides.
+struct Entry {
+  std::size_t offset = 0;
+  int node = -1;  // index into nodes_, -1 for a scalar
+};
+
+struct JsonLayout::Node {
+  std::map<std::string, Entry> members;
+  std::vector<Entry> elements;
+};
+
 namespace {
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+// A character iterator that publishes how far nlohmann's lexer has read. The
+// lexer reads strictly forward and calls the SAX handler right after the
+// token of the event, so at an event `*read` is just past that token (past
+// one more character after a number, which the lexer reads and puts back).
+struct CountingIterator {
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
 
-std::size_t skipSpace(const std::string& text, std::size_t pos) {
-  while (pos < text.size() && isSpace(text[pos])) ++pos;
-  return pos;
-}
+  const char* at = nullptr;
+  const char** read = nullptr;
 
-// At an opening quote: the offset just after the closing one.
-std::size_t stringEnd(const std::string& text, std::size_t pos) {
-  for (++pos; pos < text.size(); ++pos) {
-    if (text[pos] == '\\') {
-      ++pos;  // the escaped character cannot close the string
-    } else if (text[pos] == '"') {
-      return pos + 1;
-    }
+  reference operator*() const { return *at; }
+  CountingIterator& operator++() {
+    *read = ++at;
+    return *this;
   }
-  return text.size();
-}
-
-// The string between begin and end (quotes included), with escapes decoded so
-// that "we\u0069ghts" matches the key nlohmann saw.
-std::string decodeString(const std::string& text, std::size_t begin, std::size_t end) {
-  const std::string raw = text.substr(begin, end - begin);
-  if (raw.find('\\') == std::string::npos) return raw.substr(1, raw.size() - 2);
-  return nlohmann::json::parse(raw).get<std::string>();
-}
-
-// At a scalar: the offset just after it.
-std::size_t scalarEnd(const std::string& text, std::size_t pos) {
-  while (pos < text.size() && !isSpace(text[pos]) && !std::strchr(",]}", text[pos])) ++pos;
-  return pos;
-}
-
-// At a value's first character: the offset just after the value. Counts
-// brackets instead of recursing, so deep nesting cannot exhaust the stack.
-std::size_t valueEnd(const std::string& text, std::size_t pos) {
-  if (pos >= text.size()) return pos;
-  if (text[pos] == '"') return stringEnd(text, pos);
-  if (text[pos] != '{' && text[pos] != '[') return scalarEnd(text, pos);
-  int depth = 0;
-  while (pos < text.size()) {
-    const char c = text[pos];
-    if (c == '"') {
-      pos = stringEnd(text, pos);
-      continue;
-    }
-    if (c == '{' || c == '[') ++depth;
-    if ((c == '}' || c == ']') && --depth == 0) return pos + 1;
-    ++pos;
+  CountingIterator operator++(int) {
+    CountingIterator before = *this;
+    ++*this;
+    return before;
   }
-  return pos;
-}
+  bool operator==(const CountingIterator& o) const { return at == o.at; }
+  bool operator!=(const CountingIterator& o) const { return at != o.at; }
+};
 
-// Past a ',' (and the spaces around it) if one is next.
-std::size_t skipComma(const std::string& text, std::size_t pos) {
-  pos = skipSpace(text, pos);
-  if (pos < text.size() && text[pos] == ',') pos = skipSpace(text, pos + 1);
-  return pos;
+// nlohmann's what() without its "[json.exception.parse_error.101] parse error
+// at line 2, column 11: " prefix: the caller says where.
+std::string withoutPrefix(const std::string& what) {
+  std::string detail = what;
+  if (const std::size_t end = detail.find("] "); detail.rfind('[', 0) == 0 && end != std::string::npos) {
+    detail = detail.substr(end + 2);
+  }
+  if (const std::size_t colon = detail.find(": "); detail.rfind("parse error", 0) == 0 && colon != std::string::npos) {
+    detail = detail.substr(colon + 2);
+  }
+  return detail;
 }
 
 }  // namespace
 
-std::size_t offsetOf(const std::string& text, const JsonPath& path) {
-  const std::size_t start = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;  // a UTF-8 byte order mark, which nlohmann skips
-  std::size_t pos = skipSpace(text, start);  // at the current value
-  std::size_t found = pos;               // where the deepest step found is written
-  for (const JsonPath::Step& step : path.steps()) {
-    if (pos >= text.size()) return found;
-    if (step.is_index) {
-      if (text[pos] != '[') return found;
-      pos = skipSpace(text, pos + 1);
-      for (std::size_t i = 0;; ++i) {
-        if (pos >= text.size() || text[pos] == ']') return found;
-        if (i == step.index) break;
-        pos = skipComma(text, valueEnd(text, pos));
-      }
-      found = pos;
-    } else {
-      if (text[pos] != '{') return found;
-      pos = skipSpace(text, pos + 1);
-      for (;;) {
-        if (pos >= text.size() || text[pos] != '"') return found;
-        const std::size_t key_begin = pos;
-        const std::size_t key_end = stringEnd(text, pos);
-        pos = skipSpace(text, key_end);
-        pos = skipSpace(text, pos + 1);  // past ':'
-        if (decodeString(text, key_begin, key_end) == step.key) {
-          found = key_begin;
-          break;
-        }
-        pos = skipComma(text, valueEnd(text, pos));
-      }
-    }
+class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  Reader(JsonLayout& layout, const char* begin, int max_depth) : layout_(layout), begin_(begin), max_depth_(max_depth) {
+    read_ = begin;
   }
-  return found;
-}
+  const char** cursor() { return &read_; }
 
-std::optional<DuplicateKey> findDuplicateKey(const std::string& text) {
-  // One frame per open object or array; `step` is the member or element being
-  // read, so the frames spell the path to the current value.
+  bool null() override { return scalar(); }
+  bool boolean(bool) override { return scalar(); }
+  bool number_integer(number_integer_t) override { return scalar(); }
+  bool number_unsigned(number_unsigned_t) override { return scalar(); }
+  bool number_float(number_float_t, const string_t&) override { return scalar(); }
+  bool string(string_t&) override { return scalar(); }
+  bool binary(binary_t&) override { return scalar(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+
+  bool key(string_t& name) override {
+    Frame& frame = stack_.back();
+    const std::size_t at = lastRead();
+    auto& members = layout_.nodes_[frame.node].members;
+    if (const auto it = members.find(name); it != members.end()) {
+      if (!layout_.duplicate_) layout_.duplicate_ = DuplicateKey{pathTo(name), it->second.offset, at};
+    }
+    members[name] = Entry{at, -1};  // the last one counts, as in nlohmann's document
+    frame.key = name;
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& last_token, const nlohmann::detail::exception& ex) override {
+    Refusal r;
+    r.message = withoutPrefix(ex.what());
+    if (ex.id == 406) {  // a number beyond a double: point at its first character
+      r.kind = Refusal::Kind::Overflow;
+      r.offset = position + 1 >= last_token.size() ? position + 1 - last_token.size() : 0;
+    } else {  // the position counts from 1 and is the last character read: the culprit
+      r.offset = position > 0 ? position - 1 : 0;
+    }
+    layout_.refusal_ = std::move(r);
+    return false;
+  }
+
+ private:
   struct Frame {
+    int node = 0;
     bool object = false;
-    bool expect_key = false;
-    std::size_t count = 0;
-    JsonPath::Step step;
-    std::map<std::string, std::size_t> keys;  // key -> offset
+    std::string key;  // the member being read, in an object
   };
-  std::vector<Frame> stack;
-  auto pathHere = [&stack](const std::string& key) {
+
+  std::size_t lastRead() const { return read_ > begin_ ? std::size_t(read_ - begin_) - 1 : 0; }
+
+  JsonPath pathTo(const std::string& key) const {
     JsonPath path;
-    for (std::size_t i = 0; i + 1 < stack.size(); ++i) {
-      const JsonPath::Step& s = stack[i].step;
-      path = s.is_index ? path.index(s.index) : path.key(s.key);
+    for (std::size_t i = 0; i + 1 < stack_.size(); ++i) {
+      const Frame& f = stack_[i];
+      path = f.object ? path.key(f.key) : path.index(layout_.nodes_[f.node].elements.size() - 1);
     }
     return path.key(key);
-  };
-  // A value starts: in an array it is the next element.
-  auto valueStarts = [&stack]() {
-    if (!stack.empty() && !stack.back().object) stack.back().step = {true, {}, stack.back().count++};
-  };
-
-  std::size_t pos = 0;
-  while ((pos = skipSpace(text, pos)) < text.size()) {
-    const char c = text[pos];
-    if (c == '{' || c == '[') {
-      valueStarts();
-      stack.push_back({c == '{', c == '{', 0, {}, {}});
-      ++pos;
-    } else if (c == '}' || c == ']') {
-      if (!stack.empty()) stack.pop_back();
-      ++pos;
-    } else if (c == ',') {
-      if (!stack.empty() && stack.back().object) stack.back().expect_key = true;
-      ++pos;
-    } else if (c == ':') {
-      ++pos;
-    } else if (c == '"') {
-      const std::size_t end = stringEnd(text, pos);
-      if (!stack.empty() && stack.back().expect_key) {
-        Frame& frame = stack.back();
-        frame.expect_key = false;
-        std::string key = decodeString(text, pos, end);
-        const auto [it, inserted] = frame.keys.emplace(key, pos);
-        if (!inserted) return DuplicateKey{pathHere(key), it->second, pos};
-        frame.step = {false, std::move(key), 0};
-      } else {
-        valueStarts();
-      }
-      pos = end;
-    } else {
-      valueStarts();
-      pos = scalarEnd(text, pos);
-    }
   }
-  return std::nullopt;
+
+  // Where the value that starts now goes: the document, a member, the next element.
+  Entry& place(std::size_t at) {
+    if (stack_.empty()) {
+      layout_.document_ = at;
+      return root_;
+    }
+    Frame& frame = stack_.back();
+    Node& node = layout_.nodes_[frame.node];
+    if (frame.object) return node.members[frame.key];  // the key's offset stays
+    node.elements.push_back(Entry{at, -1});
+    return node.elements.back();
+  }
+
+  bool scalar() {
+    place(lastRead());
+    return true;
+  }
+
+  bool open(bool object) {
+    const std::size_t at = lastRead();  // the bracket
+    if (int(stack_.size()) >= max_depth_) {
+      layout_.refusal_ = Refusal{Refusal::Kind::TooDeep, at, "nested more than " + std::to_string(max_depth_) +
+                                                                 " levels deep"};
+      return false;
+    }
+    const int index = int(layout_.nodes_.size());
+    place(at).node = index;  // the document's own node is nodes_[0]
+    layout_.nodes_.emplace_back();
+    stack_.push_back(Frame{index, object, {}});
+    return true;
+  }
+
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+
+ private:
+  JsonLayout& layout_;
+  const char* begin_;
+  const char* read_;
+  int max_depth_;
+  std::vector<Frame> stack_;
+  Entry root_;  // the document's value: a scalar, or nodes_[0]
+};
+
+JsonLayout::JsonLayout(const std::string& text, int max_depth) {
+  Reader reader(*this, text.data(), max_depth);
+  const CountingIterator first{text.data(), reader.cursor()};
+  const CountingIterator last{text.data() + text.size(), reader.cursor()};
+  nlohmann::json::sax_parse(first, last, &reader);
 }
 
-std::optional<std::size_t> findOverflowingNumber(const std::string& text) {
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const char c = text[pos];
-    if (c == '"') {
-      pos = stringEnd(text, pos);
-    } else if (c == '-' || (c >= '0' && c <= '9')) {
-      const std::size_t end = scalarEnd(text, pos);
-      // from_chars flags overflow and underflow alike; nlohmann refuses only
-      // overflow (it reads 1e-400 as 0), so ask it about the rare out-of-range token.
-      double value = 0;
-      const auto result = std::from_chars(text.data() + pos, text.data() + end, value);
-      if (result.ec == std::errc::result_out_of_range && !nlohmann::json::accept(text.substr(pos, end - pos))) {
-        return pos;
-      }
-      pos = end;
-    } else {
-      ++pos;
-    }
-  }
-  return std::nullopt;
-}
+JsonLayout::~JsonLayout() = default;
+JsonLayout::JsonLayout(JsonLayout&&) noexcept = default;
 
-std::optional<std::size_t> findNestingBeyond(const std::string& text, int max_depth) {
-  int depth = 0;
-  for (std::size_t pos = 0; pos < text.size(); ++pos) {
-    const char c = text[pos];
-    if (c == '"') {
-      pos = stringEnd(text, pos) - 1;
-    } else if (c == '{' || c == '[') {
-      if (++depth > max_depth) return pos;
-    } else if (c == '}' || c == ']') {
-      --depth;
+std::size_t JsonLayout::offsetOf(const JsonPath& path) const {
+  std::size_t found = document_;
+  int node = nodes_.empty() ? -1 : 0;
+  for (const JsonPath::Step& step : path.steps()) {
+    if (node < 0) return found;
+    const Node& n = nodes_[node];
+    const Entry* entry = nullptr;
+    if (step.is_index) {
+      if (step.index < n.elements.size()) entry = &n.elements[step.index];
+    } else if (const auto it = n.members.find(step.key); it != n.members.end()) {
+      entry = &it->second;
     }
+    if (!entry) return found;
+    found = entry->offset;
+    node = entry->node;
   }
-  return std::nullopt;
+  return found;
 }
 
 }  // namespace pronk::policy_file

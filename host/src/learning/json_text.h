@@ -1,7 +1,6 @@
-// Where things are written in a JSON text, for file:line messages. nlohmann
-// parses values but keeps no positions, so on an error we walk the text again
-// to the offending key. The walker assumes text that nlohmann has already
-// parsed without a syntax error.
+// Where things are written in a JSON text, for file:line messages. nlohmann's
+// documents keep no positions; its SAX parser, fed through an iterator that
+// counts what the lexer has read, tells them.
 #pragma once
 
 #include <cstddef>
@@ -39,26 +38,48 @@ struct TextPosition {
 // offset past the end is the position just after the last character.
 TextPosition positionOf(const std::string& text, std::size_t offset);
 
-// Byte offset where `path` is written: the key of an object member, the first
-// character of an array element. A path that leads to nothing (a missing key,
-// an index past the end) stops at the deepest part that exists.
-std::size_t offsetOf(const std::string& text, const JsonPath& path);
+// What nlohmann's parsed document does not keep, from one pass of its SAX
+// parser over the text: where each key and array element is written, the first
+// key written twice in one object, and where and why the text is refused
+// (a syntax error, a number beyond a double, nesting deeper than a bound).
+// The SAX parser keeps its own stack, so a hostile depth cannot exhaust ours;
+// the document's copies and destructors recurse, hence the bound.
+class JsonLayout {
+ public:
+  JsonLayout(const std::string& text, int max_depth);
+  ~JsonLayout();
+  JsonLayout(JsonLayout&&) noexcept;
 
-// A key written twice in one object (nlohmann keeps only the last).
-struct DuplicateKey {
-  JsonPath path;           // the object's path plus the key
-  std::size_t first = 0;   // offsets of the two keys
-  std::size_t second = 0;
+  struct Refusal {
+    enum class Kind { Syntax, Overflow, TooDeep } kind = Kind::Syntax;
+    std::size_t offset = 0;  // the culprit: the character read last, the number, the bracket
+    std::string message;     // nlohmann's, without its "[json.exception...] " prefix
+  };
+  // Set when the text is not a document nlohmann would parse whole; the
+  // layout then holds what was read up to there.
+  const std::optional<Refusal>& refusal() const { return refusal_; }
+
+  // A key written twice in one object (nlohmann keeps only the last).
+  struct DuplicateKey {
+    JsonPath path;           // the object's path plus the key
+    std::size_t first = 0;   // offsets of the two keys
+    std::size_t second = 0;
+  };
+  const std::optional<DuplicateKey>& duplicateKey() const { return duplicate_; }
+
+  // Offset where `path` is written: an object member's key, an array element.
+  // A path that leads to nothing (a missing key, an index past the end) stops
+  // at the deepest part that exists; the empty path is the document.
+  std::size_t offsetOf(const JsonPath& path) const;
+
+  struct Node;
+  class Reader;
+
+ private:
+  std::vector<Node> nodes_;  // nodes_[0]: the document's, when it is an object or array
+  std::size_t document_ = 0;  // where the document's value starts
+  std::optional<Refusal> refusal_;
+  std::optional<DuplicateKey> duplicate_;
 };
-std::optional<DuplicateKey> findDuplicateKey(const std::string& text);
-
-// Offset of the first number too large for a double (nlohmann reports those
-// without a position). Scans numbers outside strings.
-std::optional<std::size_t> findOverflowingNumber(const std::string& text);
-
-// Offset of the first '{' or '[' (outside strings) that opens a level deeper
-// than `max_depth`: nesting beyond it is refused before parsing, because the
-// copies and destructors of a parsed document recurse once per level.
-std::optional<std::size_t> findNestingBeyond(const std::string& text, int max_depth);
 
 }  // namespace pronk::policy_file

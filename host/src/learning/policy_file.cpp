@@ -78,7 +78,8 @@ std::string joined(const std::vector<std::string>& names) {
 
 class PolicyReader {
  public:
-  PolicyReader(const std::string& text, const std::string& name) : text_(text), name_(name) {}
+  PolicyReader(const std::string& text, const std::string& name)
+      : text_(text), name_(name), layout_(text, kMaxNesting) {}
   static constexpr int kMaxNesting = 64;  // a policy's own structure is 4 deep; provenance is free-form
 
   MlpPolicy read() {
@@ -146,7 +147,7 @@ class PolicyReader {
   // The message starts with the path of the key at fault.
   [[noreturn]] void fail(const JsonPath& path, const std::string& message) const {
     const std::string key = path.str();
-    failAt(policy_file::offsetOf(text_, path), key.empty() ? message : key + ": " + message);
+    failAt(layout_.offsetOf(path), key.empty() ? message : key + ": " + message);
   }
 
   void failIf(const std::optional<Problem>& problem) const {
@@ -154,28 +155,20 @@ class PolicyReader {
   }
 
   json parse() const {
-    if (const auto deep = policy_file::findNestingBeyond(text_, kMaxNesting)) {
-      failAt(*deep, "column " + std::to_string(policy_file::positionOf(text_, *deep).column) +
-                        ": nested more than " + std::to_string(kMaxNesting) + " levels deep");
+    if (const auto& refusal = layout_.refusal()) {
+      using Kind = policy_file::JsonLayout::Refusal::Kind;
+      const std::string column = "column " + std::to_string(policy_file::positionOf(text_, refusal->offset).column);
+      switch (refusal->kind) {
+        case Kind::TooDeep: failAt(refusal->offset, column + ": " + refusal->message);
+        case Kind::Overflow: failAt(refusal->offset, column + ": " + refusal->message + " (beyond the range of a double)");
+        case Kind::Syntax: failAt(refusal->offset, column + ": invalid JSON: " + refusal->message);
+      }
     }
-    try {
-      return json::parse(text_);
-    } catch (const json::parse_error& e) {
-      // e.byte counts from 1 and is the last character read: the culprit.
-      const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-      const int column = policy_file::positionOf(text_, offset).column;
-      failAt(offset, "column " + std::to_string(column) + ": invalid JSON: " + nlohmannDetail(e.what()));
-    } catch (const json::out_of_range& e) {
-      // A number beyond the range of double; nlohmann gives no position.
-      const std::size_t offset = policy_file::findOverflowingNumber(text_).value_or(0);
-      const int column = policy_file::positionOf(text_, offset).column;
-      failAt(offset, "column " + std::to_string(column) + ": " + nlohmannDetail(e.what()) +
-                         " (beyond the range of a double)");
-    }
+    return json::parse(text_);  // the layout's pass accepted it: nlohmann's parse does too
   }
 
   void checkNoDuplicateKeys() const {
-    if (const auto dup = policy_file::findDuplicateKey(text_)) {
+    if (const auto& dup = layout_.duplicateKey()) {
       failAt(dup->second, dup->path.str() + ": duplicate key (first written on line " +
                               std::to_string(policy_file::positionOf(text_, dup->first).line) + ")");
     }
@@ -240,7 +233,7 @@ class PolicyReader {
     std::optional<std::pair<std::size_t, std::string>> first;
     for (const auto& item : object.items()) {
       if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
-      const std::size_t offset = policy_file::offsetOf(text_, path.key(item.key()));
+      const std::size_t offset = layout_.offsetOf(path.key(item.key()));
       if (!first || offset < first->first) first = {offset, item.key()};
     }
     if (first) fail(path.key(first->second), "unknown key (known keys here: " + joined(known) + ")");
@@ -316,6 +309,7 @@ class PolicyReader {
 
   const std::string& text_;
   const std::string& name_;
+  const policy_file::JsonLayout layout_;  // where each key is written, and what the text's parse refuses
 };
 
 // Pretty JSON whose flat arrays stay on one line: a weight row per line, so

@@ -320,8 +320,9 @@ PpoLearner loadPpoCheckpoint(const std::string& path) {
   const std::string text = learning_files::readFile(path, "checkpoint");
   // A checkpoint is at most a few levels deep; deeper nesting is a damaged or
   // hostile file, refused before the recursive parse and copies.
-  if (const auto deep = policy_file::findNestingBeyond(text, 64)) {
-    throw InputError({path, policy_file::positionOf(text, *deep).line}, "nested more than 64 levels deep");
+  const policy_file::JsonLayout layout(text, 64);
+  if (const auto& refusal = layout.refusal(); refusal && refusal->kind == policy_file::JsonLayout::Refusal::Kind::TooDeep) {
+    throw InputError({path, policy_file::positionOf(text, refusal->offset).line}, refusal->message);
   }
   json doc;
   try {
