@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,7 @@ struct RunOptions {
   std::vector<double> stills; // simulated times to save as PNG beside the video
   std::string policy;         // "ballistic" or a policy file; "" = the scenario's <environment policy>
   std::string sweep;          // run this sweep's cases instead of the targets
+  std::optional<unsigned long> seed;  // replaces the <random> sweep's seed
   bool video_per_jump = false;  // one video file per jump instead of one for all
   std::vector<std::string> params;  // NAME=VALUE: the environment's parameters in a jump run, else the controller's
   int jobs = 0;               // worker threads of a jump run; 0 = one per core

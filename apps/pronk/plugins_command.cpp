@@ -1,6 +1,9 @@
 // `pronk plugins`: the plugin search path, the libraries found, their factories and parameters.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+
+#include <fmt/format.h>
 
 #include "commands.h"
 #include "pronk/controller_factory.h"
@@ -9,6 +12,19 @@ namespace pronk::cli {
 namespace {
 
 int pluginsCommand(const CommonOptions& common);
+
+// The range a number (or each number of a vector) is checked against, as the
+// host checks it: "in [lo, hi]", one-sided when the other bound is infinite,
+// "" when the plugin declares none (min > max) or the parameter is text.
+std::string rangeOf(const pronk_param_decl& p) {
+  const bool numeric = p.type == PRONK_PARAM_REAL || p.type == PRONK_PARAM_INT || p.type == PRONK_PARAM_VECTOR;
+  if (!numeric || p.min_value > p.max_value) return "";
+  const bool low = std::isfinite(p.min_value), high = std::isfinite(p.max_value);
+  if (low && high) return fmt::format("in [{:g}, {:g}]", p.min_value, p.max_value);
+  if (low) return fmt::format(">= {:g}", p.min_value);
+  if (high) return fmt::format("<= {:g}", p.max_value);
+  return "";
+}
 
 }  // namespace
 
@@ -52,9 +68,10 @@ int pluginsCommand(const CommonOptions& common) {
       }
       for (int32_t i = 0; i < f->param_count; ++i) {
         const pronk_param_decl& p = f->params[i];
-        std::printf("              param %-22s default %-12s %s%s%s\n", p.name, p.default_value ? p.default_value : "(required)",
-                    p.unit && *p.unit ? "[" : "", p.unit && *p.unit ? (std::string(p.unit) + "] ").c_str() : "",
-                    p.description ? p.description : "");
+        const std::string unit = p.unit && *p.unit ? fmt::format("[{}] ", p.unit) : "";
+        fmt::print("              param {:<22} default {:<12} {:<18} {}{}\n", p.name,
+                   p.default_value ? p.default_value : "(required)", rangeOf(p), unit,
+                   p.description ? p.description : "");
       }
     }
   }

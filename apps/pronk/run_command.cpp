@@ -28,10 +28,26 @@ double peakFootForce(const Trace& trace) {
   return peak;
 }
 
+// --seed: the named sweep draws its cases from another seed. Only a <random>
+// sweep has one; a grid or a variation would silently ignore it.
+void reseedSweep(Scenario& scenario, const std::string& name, unsigned long seed) {
+  for (SweepSpec& sweep : scenario.sweeps) {
+    if (sweep.name != name) continue;
+    if (sweep.kind != SweepSpec::Kind::Random) {
+      throw InputError(sweep.where, "--seed " + std::to_string(seed) + ": sweep '" + name +
+                                        "' is not a <random> sweep and draws nothing from a seed");
+    }
+    sweep.seed = seed;
+    return;
+  }
+  // An unknown sweep name is reported where the cases are expanded.
+}
+
 }  // namespace
 
 int runCommand(const CommonOptions& common, const RunOptions& options) {
   Scenario scenario = loadScenario(options.scenario);
+  if (options.seed) reseedSweep(scenario, options.sweep, *options.seed);
   if (runsJumps(scenario, options)) return runJumps(common, options, scenario);
   if (!options.policy.empty() || !options.sweep.empty()) {
     throw Error(std::string(options.policy.empty() ? "--sweep" : "--policy") + ": " + options.scenario +
@@ -158,6 +174,10 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
                       "jump to the scenario's targets with this policy: 'ballistic' (the environment's analytic "
                       "planner) or a policy file (default: the scenario's <environment policy>)")->check(kNonEmpty);
   sub->add_option("--sweep", o->sweep, "run the cases of this <sweeps> entry instead of the targets")->check(kNonEmpty);
+  sub->add_option("--seed", o->seed, "draw the --sweep's random cases from this seed instead of the file's "
+                                     "(a <random> sweep; 0 ... 4294967295)")
+      ->check(CLI::Range(0ul, 4294967295ul))
+      ->needs("--sweep");
   sub->add_flag("--video-per-jump", o->video_per_jump, "one video file per jump (NAME-000.mp4 ...) instead of one");
   sub->add_option("--param", o->params,
                       "NAME=VALUE: set a parameter of the scenario's <environment> in a jump run, of its controller "

@@ -173,6 +173,11 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
             std::string::npos)
       << o.output;
+  // Each parameter with its default, the range the host checks and its unit (docs/plugin-abi.md).
+  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param kp +default 100 +in \[0, 1000\] +\[N m/rad\])")))
+      << o.output;
+  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param duration +default 1.5 +in \[0.01, 60\] +\[s\])")))
+      << o.output;
 }
 
 TEST(Cli, BenchRolloutPrintsEachLeverAndTheSpeedUp) {

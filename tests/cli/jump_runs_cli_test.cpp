@@ -378,6 +378,31 @@ TEST(JumpRuns, SweepCasesAreSeededAndReproducible) {
   EXPECT_NE(bad.output.find("no sweep named 'nope'; known: ahead"), std::string::npos) << bad.output;
 }
 
+TEST(JumpRuns, SeedOverridesARandomSweepsSeedAndOnlyThat) {
+  // --seed 7 is the file's own seed: the same cases; another seed draws others.
+  const std::string same = outDir("jump_seed_same"), other = outDir("jump_seed_other"), file = outDir("jump_seed_file");
+  pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --out " + file);
+  const CommandRun rs = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --seed 7 --out " + same);
+  const CommandRun ro = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --seed 8 --out " + other);
+  const nlohmann::json jf = results(file), js = results(same), jo = results(other);
+  ASSERT_EQ(js.size(), 2u) << rs.output;
+  ASSERT_EQ(jo.size(), 2u) << ro.output;
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(jf[i]["target"], js[i]["target"]);
+    EXPECT_NE(jf[i]["target"], jo[i]["target"]);
+    EXPECT_GE(jo[i]["target"]["x"].get<double>(), 0.1);
+    EXPECT_LE(jo[i]["target"]["x"].get<double>(), 0.4);
+  }
+  // Without --sweep there is nothing to reseed (usage, 2); a sweep without a seed is named at its line (3).
+  const CommandRun alone = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --seed 8");
+  EXPECT_EQ(alone.status, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--sweep"), std::string::npos) << alone.output;
+  const CommandRun vary = pronk("run " + testScenario("go1_rollout_mix.xml") + " --policy ballistic --sweep mass --seed 8");
+  EXPECT_EQ(vary.status, 3) << vary.output;
+  EXPECT_NE(vary.output.find("go1_rollout_mix.xml:19: --seed 8: sweep 'mass' is not a <random> sweep"), std::string::npos)
+      << vary.output;
+}
+
 TEST(JumpRuns, PolicyNeedsAnEnvironment) {
   const CommandRun r = pronk("run " + source("scenarios/go1/stand.xml") + " --policy ballistic");
   EXPECT_NE(r.status, 0);
