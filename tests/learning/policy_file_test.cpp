@@ -256,6 +256,9 @@ const std::vector<Broken> kBroken = {
     {"not_an_object.json", 1, "a policy file is a JSON object, this is array"},
     {"missing_format.json", 1, "format: missing"},
     {"wrong_format.json", 2, "format: string \"pronk-scenario\" is not \"pronk-policy\""},
+    // Found by fuzzing: the shown string was cut at byte 40, inside the "é", and nlohmann threw on it.
+    {"format_cut_in_a_character.json", 2,
+     "format: string \"pronk-policy, Go1, trained in Zürich r\"... is not \"pronk-policy\""},
     {"version_4.json", 3, "version: 4 is not supported; this pronk reads versions 1 to 3"},
     {"prior_in_version_1.json", 6, "prior: unknown key (known keys here: format, version, description, provenance, "
                                     "observation_size"},

@@ -64,7 +64,11 @@ std::string nlohmannDetail(const std::string& what) {
 std::string describe(const json& v) {
   if (v.is_string()) {
     const std::string s = v.get<std::string>();
-    return "string " + (s.size() <= 40 ? json(s).dump() : json(s.substr(0, 40)).dump() + "...");
+    if (s.size() <= 40) return "string " + json(s).dump();
+    // Cut before a UTF-8 character, not inside one: dump() throws on half a character.
+    std::size_t cut = 40;
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;
+    return "string " + json(s.substr(0, cut)).dump() + "...";
   }
   if (v.is_number() || v.is_boolean()) return std::string(v.type_name()) + " " + v.dump();
   return v.type_name();
