@@ -206,6 +206,27 @@ TEST(RobotDescription, AKinematicLoopIsRefusedAtItsJointNotFollowedForever) {
   }
 }
 
+TEST(RobotDescription, ALoopWithoutASecondParentIsRefusedAtItsJoint) {
+  // Found by fuzzing (urdfdom's links around the loop were never freed): a
+  // link jointed to itself, or links each other's parent apart from the
+  // root's tree. urdfdom accepts both; their links were left out of the robot.
+  const std::filesystem::path dir = std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf";
+  const std::pair<std::string, std::string> cases[] = {
+      {"self_parent.urdf", ":12: joint 'foot_fixed' closes a kinematic loop (child <- parent: 'foot' <- 'foot')"},
+      {"loop_beside_the_tree.urdf",
+       ":15: joint 'knee' closes a kinematic loop (child <- parent: 'calf' <- 'thigh' <- 'calf')"},
+  };
+  for (const auto& [file, message] : cases) {
+    const std::string path = (dir / file).string();
+    try {
+      loadUrdf(path);
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + message + ": a URDF is a tree", 0), 0u) << e.what();
+    }
+  }
+}
+
 TEST(RobotDescription, UnparseableAndUnphysicalNumbersAreRefusedWithTheirLine) {
   // urdfdom silently dropped these (a trunk mass of "abc" gave a lighter robot
   // that still jumped) or took them; each is now an error at its line.

@@ -520,19 +520,54 @@ RobotDescription parseUrdf(const std::string& xml, const std::string& origin, co
   checkUrdfNumbers(*doc.FirstChildElement("robot"), origin);
   // A URDF is a tree: a link that is the child of two joints closes a loop,
   // which urdfdom accepts and the recursive build would follow forever.
-  std::map<std::string, std::string> parent_joint;  // child link -> the joint that has it
+  struct Inboard {
+    std::string joint, parent;  // the joint that has the link as its child, and its parent link
+    int line = 0;
+  };
+  std::map<std::string, Inboard> inboard;  // child link -> its joint
   for (const tinyxml2::XMLElement* j = doc.FirstChildElement("robot")->FirstChildElement("joint"); j;
        j = j->NextSiblingElement("joint")) {
     const tinyxml2::XMLElement* child = j->FirstChildElement("child");
+    const tinyxml2::XMLElement* parent = j->FirstChildElement("parent");
     const char* link = child ? child->Attribute("link") : nullptr;
+    const char* parent_link = parent ? parent->Attribute("link") : nullptr;
     const char* name = j->Attribute("name");
-    if (!link) continue;  // urdfdom reports it
-    const auto [it, fresh] = parent_joint.emplace(link, name ? name : "");
+    if (!link || !parent_link) continue;  // urdfdom reports it
+    const auto [it, fresh] = inboard.emplace(link, Inboard{name ? name : "", parent_link, j->GetLineNum()});
     if (!fresh) {
       throw InputError({origin, j->GetLineNum()}, "link '" + std::string(link) + "' is the child of joints '" +
-                                                      it->second + "' and '" + (name ? name : "") +
+                                                      it->second.joint + "' and '" + (name ? name : "") +
                                                       "': a URDF is a tree (kinematic loops are not supported)");
     }
+  }
+  // A loop with no second parent: a link jointed to itself, or links that are
+  // each other's ancestors apart from the root's tree. urdfdom accepts it when
+  // the rest has one root; its links were left out of the robot without a word
+  // (and urdfdom's shared pointers around the loop never freed: found by fuzzing).
+  std::map<std::string, bool> settled;  // link -> false while on the current walk up, true once it reached a root
+  for (const auto& start : inboard) {
+    std::vector<std::string> walk;
+    std::string link = start.first;
+    for (;;) {
+      const auto seen = settled.find(link);
+      if (seen != settled.end()) {
+        if (seen->second) break;
+        std::string loop = "'" + link + "'";
+        for (std::string l = inboard.at(link).parent; ; l = inboard.at(l).parent) {
+          loop += " <- '" + l + "'";
+          if (l == link) break;
+        }
+        const Inboard& j = inboard.at(link);
+        throw InputError({origin, j.line}, "joint '" + j.joint + "' closes a kinematic loop (child <- parent: " + loop +
+                                               "): a URDF is a tree (kinematic loops are not supported)");
+      }
+      settled.emplace(link, false);
+      walk.push_back(link);
+      const auto up = inboard.find(link);
+      if (up == inboard.end()) break;  // a root
+      link = up->second.parent;
+    }
+    for (const std::string& l : walk) settled[l] = true;
   }
 
   urdf::ModelInterfaceSharedPtr model;
