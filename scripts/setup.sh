@@ -17,7 +17,8 @@ PACKAGES="build-essential cmake pkg-config
   libsimbody-dev liburdfdom-dev libtinyxml2-dev libeigen3-dev libassimp-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
-  libfreetype-dev fonts-dejavu-core gnuplot-nox libssl-dev"
+  libfreetype-dev fonts-dejavu-core gnuplot-nox libssl-dev
+  clang libclang-rt-dev llvm"  # scripts/fuzz.sh: libFuzzer, ASan/UBSan runtimes, llvm-symbolizer
 
 if [ "${PRONK_SKIP_APT:-0}" != 1 ]; then
   SUDO=""
