@@ -225,6 +225,16 @@ std::string ElementReader::path(const char* name, const std::string& fallback) {
   return (file_.directory / value).lexically_normal().string();
 }
 
+void ElementReader::requireFile(const std::string& path, const std::string& what, bool directory) const {
+  // The error_code overload: the throwing one let std::filesystem_error out of
+  // the reader for a name over 255 bytes (found by fuzzing).
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (directory ? std::filesystem::is_directory(status) : std::filesystem::is_regular_file(status)) return;
+  const bool refused = ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory;
+  fail(what + " not found: " + path + (refused ? " (" + ec.message() + ")" : ""));
+}
+
 void ElementReader::rejectUnknownAttributes() const {
   for (const tinyxml2::XMLAttribute* a = element_.FirstAttribute(); a; a = a->Next()) {
     if (std::find(known_.begin(), known_.end(), a->Name()) != known_.end()) continue;

@@ -92,6 +92,10 @@ class ElementReader {
 
   // A path relative to this file's directory (or absolute), made absolute.
   std::string path(const char* name, const std::string& fallback);
+  // Fails "<what> not found: PATH" unless PATH is a regular file (a directory
+  // with `directory`); a path the system refuses (a name over 255 bytes, a
+  // folder that may not be entered) gets the system's reason in parentheses.
+  void requireFile(const std::string& path, const std::string& what, bool directory = false) const;
 
   // Reports the first attribute that no accessor above asked for.
   void rejectUnknownAttributes() const;

@@ -49,10 +49,10 @@ void readRobot(const XMLElement& e, const SourceFile& file, PlatformSpec& p) {
   const std::string packages = r.text("package_path", "");
   r.rejectUnknownAttributes();
   r.children({});
-  if (!fs::is_regular_file(p.urdf)) r.fail("URDF file not found: " + p.urdf);
+  r.requireFile(p.urdf, "URDF file");
   for (const std::string& dir : splitWords(packages)) {
     const std::string resolved = (file.directory / dir).lexically_normal().string();
-    if (!fs::is_directory(resolved)) r.fail("package_path directory not found: " + resolved);
+    r.requireFile(resolved, "package_path directory", true);
     p.package_paths.push_back(resolved);
   }
 }
@@ -126,7 +126,7 @@ std::string readPluginAttribute(ElementReader& r) {
   const std::string plugin = r.text("plugin", "");
   if (plugin.find('/') == std::string::npos) return plugin;
   const std::string path = r.path("plugin", "");
-  if (!fs::is_regular_file(path)) r.fail("plugin file not found: " + path);
+  r.requireFile(path, "plugin file");
   return path;
 }
 
@@ -171,7 +171,7 @@ EnvironmentSpec readEnvironment(const XMLElement& e, const SourceFile& file) {
   env.policy = r.text("policy", "");
   if (!env.policy.empty() && env.policy != "ballistic") {
     env.policy = r.path("policy", "");  // a policy file, relative to this file
-    if (!fs::is_regular_file(env.policy)) r.fail("policy file not found: " + env.policy);
+    r.requireFile(env.policy, "policy file");
   }
   r.rejectUnknownAttributes();
   env.params = readParams(r, file);

@@ -177,8 +177,10 @@ void Loader::include(const XMLElement& element, const SourceFile& file) {
   const fs::path target = fs::path(relative).is_absolute()
                               ? fs::path(relative).lexically_normal()
                               : (fs::path(file.shown).parent_path() / relative).lexically_normal();
-  if (!fs::is_regular_file(target)) r.fail("included file not found: " + target.string());
-  const fs::path identity = fs::weakly_canonical(target);
+  r.requireFile(target.string(), "included file");
+  std::error_code ec;
+  fs::path identity = fs::weakly_canonical(target, ec);
+  if (ec) identity = target;
   for (const fs::path& open_file : include_chain_) {
     if (open_file != identity) continue;
     std::string chain;
