@@ -1,7 +1,7 @@
 // libFuzzer target: the bytes as a scenario file -> pronk::loadScenario (or
 // loadScenarioPart for a <scenario_part>, as `pronk validate` does), then each
-// target's case applied (sweep expansion is left out: a legal sweep may hold
-// 10 million cases). The reader takes a path and follows <include file> and
+// case of the targets and of every sweep applied, as validate does, for sweeps
+// of at most kMaxCases cases (a legal sweep may hold 10 million). The reader takes a path and follows <include file> and
 // <platform urdf> relative to it, so the input is written to a file in a
 // per-process sandbox whose links make the paths of the project's scenarios
 // (scenarios/*/) and test fixtures (tests/scenario/broken/) resolve. A
@@ -9,6 +9,7 @@
 // counts as a finding.
 #include <stdlib.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -22,6 +23,8 @@
 namespace {
 
 namespace fs = std::filesystem;
+
+constexpr double kMaxCases = 1000;
 
 fs::path g_sandbox;
 std::string g_input;
@@ -60,6 +63,19 @@ void makeSandbox() {
   g_input = (s / "b" / "input.xml").string();
 }
 
+// The cases sweepCases would return, without making them.
+double caseCount(const pronk::Scenario& scenario, const pronk::SweepSpec& sweep) {
+  double n = 1;
+  switch (sweep.kind) {
+    case pronk::SweepSpec::Kind::Grid:
+      for (const pronk::SweepAxis& axis : sweep.axes) n *= static_cast<double>(axis.values.size());
+      break;
+    case pronk::SweepSpec::Kind::Random: n = sweep.count; break;
+    case pronk::SweepSpec::Kind::Vary: n = sweep.axes.empty() ? 0 : static_cast<double>(sweep.axes.front().values.size()); break;
+  }
+  return n * static_cast<double>(std::max<std::size_t>(1, scenario.targets.size()));  // a sweep may run every target
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -82,6 +98,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } else {
       const pronk::Scenario scenario = pronk::loadScenario(g_input);
       for (const pronk::EpisodeCase& c : pronk::targetCases(scenario)) pronk::applyCase(scenario, c);
+      for (const pronk::SweepSpec& sweep : scenario.sweeps) {
+        if (caseCount(scenario, sweep) > kMaxCases) continue;
+        for (const pronk::EpisodeCase& c : pronk::sweepCases(scenario, sweep.name)) pronk::applyCase(scenario, c);
+      }
     }
   } catch (const pronk::Error&) {
   }
