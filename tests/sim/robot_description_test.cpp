@@ -206,6 +206,19 @@ TEST(RobotDescription, AKinematicLoopIsRefusedAtItsJointNotFollowedForever) {
   }
 }
 
+TEST(RobotDescription, APercentSignIsRefusedBeforeUrdfdomPrintsIt) {
+  // Found by fuzzing: urdfdom used a malformed rgba's text as a printf format.
+  const std::string path =
+      (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" / "percent_in_a_value.urdf").string();
+  try {
+    loadUrdf(path);
+    FAIL() << "a '%' reached urdfdom";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":6: <color>: rgba=\"0.7 0.%S 0.7 1\" holds a '%'", 0), 0u)
+        << e.what();
+  }
+}
+
 TEST(RobotDescription, ALoopWithoutASecondParentIsRefusedAtItsJoint) {
   // Found by fuzzing (urdfdom's links around the loop were never freed): a
   // link jointed to itself, or links each other's parent apart from the

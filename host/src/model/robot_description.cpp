@@ -162,6 +162,26 @@ void checkUrdfNumbers(const tinyxml2::XMLElement& robot, const std::string& orig
   }
 }
 
+// urdfdom (3.0) builds some error messages from the file's names and values and
+// hands them to console_bridge as a printf format: a '%' there reads arguments
+// that are not passed (a malformed rgba holding "%S" crashed it; found by
+// fuzzing). No attribute of a URDF may hold one, so urdfdom never sees it.
+void checkNoPercentSign(const tinyxml2::XMLElement& robot, const std::string& origin) {
+  std::vector<const tinyxml2::XMLElement*> stack = {&robot};
+  while (!stack.empty()) {
+    const tinyxml2::XMLElement& e = *stack.back();
+    stack.pop_back();
+    for (const tinyxml2::XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
+    for (const tinyxml2::XMLAttribute* a = e.FirstAttribute(); a; a = a->Next()) {
+      if (std::strchr(a->Value(), '%')) {
+        throw InputError({origin, e.GetLineNum()}, "<" + std::string(e.Name()) + ">: " + a->Name() + "=\"" +
+                                                       a->Value() + "\" holds a '%', which urdfdom cannot take "
+                                                       "(it prints names and values as a printf format)");
+      }
+    }
+  }
+}
+
 // Mass properties of `add`, whose frame sits at `pose` in the body, merged into `into`.
 void lumpMass(MassProperties& into, const MassProperties& add, const Eigen::Isometry3d& pose) {
   if (add.mass <= 0) return;
@@ -518,6 +538,7 @@ RobotDescription parseUrdf(const std::string& xml, const std::string& origin, co
   if (!doc.FirstChildElement("robot")) throw InputError({origin, 1}, "the root element is not <robot>");
   const LineIndex lines = indexLines(doc);
   checkUrdfNumbers(*doc.FirstChildElement("robot"), origin);
+  checkNoPercentSign(*doc.FirstChildElement("robot"), origin);
   // A URDF is a tree: a link that is the child of two joints closes a loop,
   // which urdfdom accepts and the recursive build would follow forever.
   struct Inboard {
