@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <iterator>
+#include <string_view>
 #include <map>
 
 namespace pronk::policy_file {
@@ -136,9 +137,11 @@ class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
   bool parse_error(std::size_t position, const std::string& last_token, const nlohmann::detail::exception& ex) override {
     Refusal r;
     r.message = withoutPrefix(ex.what());
-    if (ex.id == 406) {  // a number beyond a double: point at its first character
+    if (ex.id == 406) {  // a number beyond a double: point at its first character, the token's last writing
+      const std::string_view read(begin_, std::size_t(read_ - begin_));
+      const std::size_t at = last_token.empty() ? std::string_view::npos : read.rfind(last_token);
       r.kind = Refusal::Kind::Overflow;
-      r.offset = position + 1 >= last_token.size() ? position + 1 - last_token.size() : 0;
+      r.offset = at == std::string_view::npos ? lastRead() : at;
     } else {  // the position counts from 1 and is the last character read: the culprit
       r.offset = position > 0 ? position - 1 : 0;
     }
