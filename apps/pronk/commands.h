@@ -66,6 +66,9 @@ Subcommand declareTrain(CLI::App& app, const CommonOptions& common);
 Subcommand declareEval(CLI::App& app, const CommonOptions& common);
 Subcommand declareCheck(CLI::App& app, const CommonOptions& common);
 Subcommand declarePlot(CLI::App& app, const CommonOptions& common);
+// Generated from the declared command line: a bash completion script, the man page.
+Subcommand declareCompletion(CLI::App& app, const CommonOptions& common);
+Subcommand declareMan(CLI::App& app, const CommonOptions& common);
 
 struct RunOptions {
   std::string scenario;

@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
                                             declareRun(app, common), declareRender(app, common),
                                             declareBench(app, common), declareTrain(app, common),
                                             declareEval(app, common), declareCheck(app, common),
-                                            declarePlot(app, common)};
+                                            declarePlot(app, common), declareCompletion(app, common),
+                                            declareMan(app, common)};
 
   try {
     app.parse(argc, argv);

@@ -180,6 +180,42 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
       << o.output;
 }
 
+TEST(Cli, TheManPageListsEveryCommandAndOptionAndRendersCleanly) {
+  const Outcome o = pronk("man");
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_EQ(o.output.rfind(".\\\" pronk(1)", 0), 0u) << o.output.substr(0, 200);
+  EXPECT_NE(o.output.find(".TH PRONK 1"), std::string::npos);
+  for (const char* command : {"plugins", "validate", "run", "render", "bench", "train", "eval", "check", "plot"}) {
+    EXPECT_NE(o.output.find(std::string(".SS \\fBpronk ") + command + "\\fR"), std::string::npos) << command;
+  }
+  for (const char* option : {"\\fB\\-\\-seed\\fR \\fIUINT\\fR", "\\fB\\-\\-camera\\fR \\fI{side,follow,top,fixed}\\fR",
+                             "\\fB\\-\\-resume\\fR", "\\fB\\-\\-junit\\fR"}) {
+    EXPECT_NE(o.output.find(option), std::string::npos) << option;
+  }
+  // groff, where the machine has it, renders the page without a warning.
+  if (std::system("command -v groff >/dev/null 2>&1") == 0) {
+    const Outcome g = pronk("man | groff -man -Tutf8 -ww -z");
+    EXPECT_EQ(g.status, 0);
+    EXPECT_EQ(g.output, "") << g.output;
+  }
+}
+
+TEST(Cli, TheBashCompletionCompletesCommandsOptionsAndChoices) {
+  // The generated script, sourced into bash, asked as bash asks it on TAB.
+  auto complete = [](const std::string& words, int cword) {
+    const std::string script = std::string(PRONK_CLI_OUT_DIR) + "/pronk.bash";
+    std::filesystem::create_directories(PRONK_CLI_OUT_DIR);
+    EXPECT_EQ(pronk("completion bash > " + script).status, 0);
+    return pronk_test::shell("bash -c 'source " + script + "; COMP_WORDS=(" + words +
+                             "); COMP_CWORD=" + std::to_string(cword) + "; _pronk; echo \"${COMPREPLY[*]}\"'");
+  };
+  EXPECT_EQ(complete("pronk ru", 1).output, "run\n");
+  EXPECT_EQ(complete("pronk run --se", 2).output, "--seed\n");
+  EXPECT_EQ(complete("pronk run a.xml --camera f", 4).output, "follow fixed\n");
+  EXPECT_EQ(complete("pronk eval a.xml --res", 3).output, "--resume\n");
+  EXPECT_EQ(complete("pronk run a.xml --jobs ", 4).output, "\n");  // a number: nothing to offer
+}
+
 TEST(Cli, BenchRolloutPrintsEachLeverAndTheSpeedUp) {
   // A smoke run on a two-case sweep (the figures come from the region sweep,
   // docs/performance.md): every row and the last line's exact form.

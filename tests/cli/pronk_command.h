@@ -26,6 +26,18 @@ inline Outcome pronk(const std::string& args) {
   return out;
 }
 
+// Runs a shell command line as it is (no pronk prefix): its status and output.
+inline Outcome shell(const std::string& command_line) {
+  Outcome out;
+  FILE* pipe = popen((command_line + " 2>&1").c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buffer;
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
+  const int raw = pclose(pipe);
+  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return out;
+}
+
 inline std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
 inline std::string cliScenario(const std::string& name) {
   return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name;

@@ -49,6 +49,13 @@ endif()
 # bench finds its default scenarios in the prefix.
 run_installed("pronk bench" ${pronk} bench --repeats 1)
 
+# The man page and the bash completion, generated from the command line.
+foreach(page share/man/man1/pronk.1 share/bash-completion/completions/pronk)
+  if(NOT EXISTS ${PREFIX}/${page})
+    message(FATAL_ERROR "not installed: ${PREFIX}/${page}")
+  endif()
+endforeach()
+
 # Nothing but tracked files (when the source is a git checkout).
 execute_process(COMMAND git -C ${SOURCE_DIR} ls-files -- scenarios assets
   OUTPUT_VARIABLE tracked RESULT_VARIABLE git_rc ERROR_QUIET)
