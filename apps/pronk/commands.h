@@ -23,6 +23,7 @@ enum ExitCode : int {
 
 struct CommonOptions {
   std::vector<std::string> plugin_paths;  // --plugin, repeatable
+  std::string command_line;               // as typed, for the provenance of results files
 };
 
 // Flag checks. CLI11's own Range lets NaN through (every comparison with it is

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   // docs/plugin-abi.md shows them.
   app.fallthrough();
   CommonOptions common;
+  for (int i = 0; i < argc; ++i) common.command_line += (i ? " " : "") + std::string(argv[i]);
   app.add_option("--plugin", common.plugin_paths,
                  "plugin library or directory, searched before PRONK_PLUGIN_PATH and the install directory "
                  "(repeatable)");

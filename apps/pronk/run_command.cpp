@@ -114,6 +114,12 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
     fs::create_directories(options.out_dir, ec);
     if (ec) throw Error("--out " + options.out_dir + ": cannot create the directory: " + ec.message());
     nlohmann::json j;
+    nlohmann::json settings = nlohmann::json::object();  // the controller's parameters the file and --param set
+    for (const ParamSetting& p : scenario.platform.controller.params) settings[p.name] = p.value;
+    j["run"] = {{"pronk_version", PRONK_VERSION},
+                {"git_commit", PRONK_GIT_COMMIT},
+                {"command", common.command_line},
+                {"controller_parameters", settings}};
     j["scenario"] = fs::absolute(options.scenario).string();
     j["robot"] = world.robot().name;
     j["controller"] = scenario.platform.controller.factory;

@@ -16,6 +16,7 @@
 #include "progress.h"
 #include "stop_signal.h"
 #include "pronk/controller_factory.h"
+#include "pronk/evaluation.h"
 #include "pronk/report.h"
 #include "render/declared_markers.h"
 #include "render/episode_video.h"
@@ -112,6 +113,26 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   }
   if (options.trace && options.out_dir.empty()) throw Error("--trace: needs --out DIR for the trace files");
 
+  // What this run was, for results.json: a motor=dc run must not read like a default one.
+  nlohmann::json provenance = {{"pronk_version", PRONK_VERSION},
+                               {"git_commit", PRONK_GIT_COMMIT},
+                               {"command", common.command_line},
+                               {"scenario", fs::absolute(options.scenario).lexically_normal().string()},
+                               {"environment", setup.factory->name},
+                               {"plugin", setup.origin},
+                               {"policy", policy_name == "ballistic" ? policy_name
+                                                                   : fs::absolute(policy_name).lexically_normal().string()},
+                               {"policy_fingerprint", policy_name == "ballistic" ? "" : fileFingerprint(policy_name)},
+                               {"sweep", options.sweep.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.sweep)},
+                               {"seed", nullptr},
+                               {"cases", cases.size()},
+                               {"end_at_rest_s", options.full_episodes ? 0.0 : RolloutOptions{}.end_at_rest}};
+  for (const SweepSpec& sweep : scenario.sweeps)
+    if (sweep.name == options.sweep && sweep.kind == SweepSpec::Kind::Random) provenance["seed"] = sweep.seed;
+  nlohmann::json parameters = nlohmann::json::object();  // every declared parameter, as the environment got it
+  for (int32_t i = 0; i < setup.params.size(); ++i) parameters[setup.params.data()[i].name] = setup.params.data()[i].value;
+  provenance["parameters"] = parameters;
+
   RolloutOptions rollout;
   rollout.threads = std::min<int>(jobsOf(options.jobs), static_cast<int>(std::max<size_t>(cases.size(), 1)));
   rollout.record_samples = options.trace || !video.path.empty();
@@ -136,6 +157,8 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   std::unique_ptr<render::EpisodeVideo> movie;
   JumpStatistics stats;
   JumpResultsFiles files(schema);
+  provenance["jobs"] = pool.threads();
+  files.setRun(provenance);
   Progress progress("jump", cases.size());
   const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);
   const auto start = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,11 +30,19 @@ std::string outDir(const std::string& name) {
   return dir;
 }
 
+// The jumps of a run's results.json (its "run" object aside).
 nlohmann::json results(const std::string& dir) {
   std::ifstream in(dir + "/results.json");
   nlohmann::json j;
   if (in) in >> j;
-  return j;
+  return j.is_object() ? j["jumps"] : j;
+}
+
+nlohmann::json runOf(const std::string& dir) {
+  std::ifstream in(dir + "/results.json");
+  nlohmann::json j;
+  if (in) in >> j;
+  return j.is_object() ? j["run"] : j;
 }
 
 // Runs a shipped scenario with the ballistic policy (and its trace), expects
@@ -401,6 +410,45 @@ TEST(JumpRuns, SeedOverridesARandomSweepsSeedAndOnlyThat) {
   EXPECT_EQ(vary.status, 3) << vary.output;
   EXPECT_NE(vary.output.find("go1_rollout_mix.xml:19: --seed 8: sweep 'mass' is not a <random> sweep"), std::string::npos)
       << vary.output;
+}
+
+TEST(JumpRuns, ResultsSayWhatTheRunWasAndTheTableKeepsOneRowPerJump) {
+  // A motor=dc run must not read like a default one: results.json carries the
+  // version, the command, the resolved parameters, the policy and the seed.
+  const std::string dir = outDir("jump_provenance");
+  const CommandRun r = pronk("run " + testScenario("go1_sweep.xml") + " --policy ballistic --sweep ahead --seed 9 "
+                             "--param motor=dc --out " + dir);
+  const nlohmann::json run = runOf(dir);
+  ASSERT_TRUE(run.is_object()) << r.output;
+  EXPECT_EQ(run["pronk_version"], PRONK_PROJECT_VERSION);
+  EXPECT_TRUE(run["git_commit"].is_string());
+  EXPECT_NE(run["command"].get<std::string>().find("--param motor=dc"), std::string::npos) << run.dump(1);
+  EXPECT_EQ(run["parameters"]["motor"], "dc");
+  EXPECT_EQ(run["parameters"]["kp"], "100");  // a default, resolved
+  EXPECT_EQ(run["policy"], "ballistic");
+  EXPECT_EQ(run["sweep"], "ahead");
+  EXPECT_EQ(run["seed"], 9);
+  EXPECT_EQ(run["environment"], "jump");
+  // The console table, over landed, refused and failed jumps (the mix sweep): a
+  // legend for the paired columns, one markdown row per jump with as many cells
+  // as the header, a reason in the refused and failed rows, and no nan anywhere.
+  const CommandRun mix = pronk("run " + testScenario("go1_rollout_mix.xml") + " --policy ballistic --sweep mix");
+  EXPECT_NE(mix.output.find("| rejected |"), std::string::npos) << mix.output;
+  EXPECT_NE(mix.output.find("| failed   |"), std::string::npos) << mix.output;
+  EXPECT_NE(mix.output.find("|     -     -     -      - |      - |"), std::string::npos) << mix.output;
+  EXPECT_NE(r.output.find("paired columns, planned / detected: lift-off s: planned_lift_off_time / lift_off"),
+            std::string::npos) << r.output;
+  EXPECT_FALSE(std::regex_search(mix.output, std::regex(R"(\bnan\b)"))) << mix.output;
+  std::istringstream lines(mix.output);
+  size_t header_cells = 0, rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("|", 0) != 0) continue;
+    const size_t cells = std::count(line.begin(), line.end(), '|');
+    if (!header_cells) header_cells = cells;
+    EXPECT_EQ(cells, header_cells) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2u + 6u) << mix.output;  // header, rule, six jumps
 }
 
 TEST(JumpRuns, PolicyNeedsAnEnvironment) {

@@ -1,7 +1,10 @@
 // How the host classifies a jump's end state from its trace alone.
 #include "pronk/landing.h"
+#include "pronk/report.h"
 
 #include <gtest/gtest.h>
+
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -75,6 +78,24 @@ TEST(JumpLanding, ATraceTooShortHasNoLanding) {
   const Landing l = landingOf(t, forward(0.4));
   EXPECT_FALSE(l.standing);
   EXPECT_TRUE(std::isnan(l.error_xy));
+}
+
+// judgeJump: a landing more than the paper's 0.2 m off is a miss, also for a
+// target that sets no tolerance; a tolerance replaces the radius.
+TEST(JumpJudge, ALandingBeyondTwentyCentimetresIsAMissWithoutATolerance) {
+  auto judged = [](double landed_x, std::optional<double> tolerance) {
+    EpisodeRecord r;
+    r.episode.target = forward(0.4);
+    r.episode.target.tolerance_xy = tolerance;
+    r.result.episode.trace = jump(Eigen::Vector3d(1 + landed_x, 2, 0.3), Eigen::Quaterniond::Identity(), {1, 1, 1, 1});
+    return judgeJump(r);
+  };
+  EXPECT_EQ(judged(0.55, std::nullopt).status, "ok");  // 15 cm off
+  const JumpOutcome far = judged(0.65, std::nullopt);  // 25 cm off
+  EXPECT_EQ(far.status, "missed");
+  EXPECT_NE(far.reason.find("error 25.0 cm beyond 20 cm"), std::string::npos) << far.reason;
+  EXPECT_EQ(judged(0.65, 0.3).status, "ok");
+  EXPECT_EQ(judged(0.55, 0.1).status, "missed");
 }
 
 }  // namespace

@@ -22,6 +22,10 @@ struct JumpOutcome {
   bool ran = false;    // something was simulated (not rejected, not a setup error)
 };
 
+// A target without tolerance_xy is missed beyond this horizontal error: the
+// paper's success radius (a landing more than 0.2 m off is not a landing on it).
+constexpr double kDefaultMissRadius = 0.2;  // m
+
 JumpOutcome judgeJump(const EpisodeRecord& record);
 
 // Counts and errors over a run's jumps; landed = ok + missed. Times to rest are
@@ -36,8 +40,10 @@ struct JumpStatistics {
 };
 
 // The console table (markdown), one row per jump, and the summary under it.
-// Beyond the host's columns (target, landing, errors, status, reward), one per
-// metric the environment declares with a column (pronk/schema.h).
+// Beyond the host's columns (target, landing, errors, status, reward, reason),
+// one per metric the environment declares with a column (pronk/schema.h); a
+// column that pairs two values says which is which in the legend above the
+// table. What does not exist (a rejected jump's landing) is "-", never nan.
 void printJumpTableHeader(std::FILE* out, const EnvironmentSchema& schema);
 void printJumpRow(std::FILE* out, const EpisodeRecord& record, const JumpOutcome& outcome,
                   const EnvironmentSchema& schema);
@@ -53,6 +59,9 @@ class JumpResultsFiles {
   explicit JumpResultsFiles(EnvironmentSchema schema) : schema_(std::move(schema)) {}
   // `trace_file`: the jump's trace CSV beside the results ("" = none written).
   void add(const EpisodeRecord& record, const JumpOutcome& outcome, const std::string& trace_file);
+  // What the run was (pronk's version and commit, scenario, resolved
+  // parameters, policy, seeds ...): results.json's "run" object.
+  void setRun(nlohmann::json run) { run_ = std::move(run); }
   // Writes DIR/results.json and DIR/results.csv, each replaced as a whole
   // (written beside, then renamed), so that a reader or a failed write never
   // leaves half a file. Throws Error when it cannot.
@@ -62,6 +71,7 @@ class JumpResultsFiles {
 
  private:
   EnvironmentSchema schema_;
+  nlohmann::json run_ = nlohmann::json::object();
   nlohmann::json json_ = nlohmann::json::array();
   std::string csv_;
 };

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "pronk/file_io.h"
 #include "pronk/report.h"
 #include "cells.h"
@@ -31,7 +33,7 @@ std::string statusOf(const EpisodeRecord& r, const Landing& landing) {
   if (r.result.rejected) return "rejected";
   if (r.result.episode.failure || !landing.end_failure.empty()) return "failed";
   const TargetSpec& t = r.episode.target;
-  if ((t.tolerance_xy && !(landing.error_xy <= *t.tolerance_xy)) ||
+  if (!(landing.error_xy <= t.tolerance_xy.value_or(kDefaultMissRadius)) ||
       (t.tolerance_yaw && !(landing.error_yaw <= *t.tolerance_yaw))) {
     return "missed";
   }
@@ -44,12 +46,14 @@ std::string reasonOf(const EpisodeRecord& r, const JumpOutcome& o) {
   if (r.result.episode.failure) return r.result.episode.failure->reason + ": " + r.result.episode.failure->detail;
   if (!o.landing.end_failure.empty()) return o.landing.end_failure;
   if (o.status == "missed") {
-    char text[160];
-    std::snprintf(text, sizeof text, "error %.1f cm / %.1f deg beyond the tolerance %.1f cm / %.1f deg",
-                  100 * o.landing.error_xy, o.landing.error_yaw * kDeg,
-                  100 * r.episode.target.tolerance_xy.value_or(INFINITY),
-                  r.episode.target.tolerance_yaw.value_or(INFINITY) * kDeg);
-    return text;
+    const TargetSpec& t = r.episode.target;
+    if (t.tolerance_xy || t.tolerance_yaw) {
+      return fmt::format("error {:.1f} cm / {:.1f} deg beyond the tolerance {:.1f} cm / {:.1f} deg",
+                         100 * o.landing.error_xy, o.landing.error_yaw * kDeg,
+                         100 * t.tolerance_xy.value_or(kDefaultMissRadius), t.tolerance_yaw.value_or(INFINITY) * kDeg);
+    }
+    return fmt::format("error {:.1f} cm beyond {:.0f} cm (the target sets no tolerance_xy: the paper's success radius)",
+                       100 * o.landing.error_xy, 100 * kDefaultMissRadius);
   }
   return "";
 }
@@ -67,14 +71,17 @@ std::vector<const MetricSpec*> tableColumns(const EnvironmentSchema& schema) {
   return out;
 }
 
+// A number in a table cell, right-aligned; "-" where it does not exist.
+std::string cell(double v, int width, int precision) {
+  return std::isfinite(v) ? fmt::format("{:>{}.{}f}", v, width, precision) : fmt::format("{:>{}}", "-", width);
+}
+
 // A column's text: the metric, and beside it what it pairs with ("planned/detected").
 std::string columnCell(const Trace& trace, const MetricSpec& m) {
-  const char* format = m.unit == "s" ? "%5.3f" : "%5.2f";
-  char a[32], b[32];
-  std::snprintf(a, sizeof a, format, metricOrNaN(trace, m.name.c_str()));
+  const int precision = m.unit == "s" ? 3 : 2;
+  const std::string a = cell(metricOrNaN(trace, m.name.c_str()), 5, precision);
   if (m.pairs_with.empty()) return a;
-  std::snprintf(b, sizeof b, format, eventOrMetric(trace, m.pairs_with));
-  return std::string(a) + "/" + b;
+  return a + "/" + cell(eventOrMetric(trace, m.pairs_with), 5, precision);
 }
 
 size_t columnWidth(const MetricSpec& m) { return std::max<size_t>(m.column.size(), m.pairs_with.empty() ? 5 : 11); }
@@ -109,28 +116,41 @@ void JumpStatistics::add(const EpisodeRecord& r, const JumpOutcome& o) {
 }
 
 void printJumpTableHeader(std::FILE* out, const EnvironmentSchema& schema) {
-  std::fprintf(out, "\n| %3s | %-25s | %-25s | %6s | %5s |", "#", "target x y z [m] yaw[deg]", "landing x y z [m] yaw[deg]",
-               "err cm", "yaw ");
-  std::string rule = "|-----|---------------------------|---------------------------|--------|-------|";
+  // Which value of a paired cell is which: the environment's metric, then what it pairs with.
+  std::string legend;
   for (const MetricSpec* m : tableColumns(schema)) {
-    std::fprintf(out, " %-*s |", static_cast<int>(columnWidth(*m)), m->column.c_str());
+    if (m->pairs_with.empty()) continue;
+    legend += fmt::format("{}{}: {} / {}", legend.empty() ? "" : "; ", m->column, m->name, m->pairs_with);
+  }
+  if (!legend.empty()) fmt::print(out, "\npaired columns, planned / detected: {}\n", legend);
+  std::string header = fmt::format("| {:>3} | {:<25} | {:<25} | {:>6} | {:>7} |", "#", "target x y z [m] yaw[deg]",
+                                   "landing x y z [m] yaw[deg]", "err cm", "yaw deg");
+  std::string rule = "|-----|---------------------------|---------------------------|--------|---------|";
+  for (const MetricSpec* m : tableColumns(schema)) {
+    header += fmt::format(" {:<{}} |", m->column, columnWidth(*m));
     rule += std::string(columnWidth(*m) + 2, '-') + "|";
   }
-  std::fprintf(out, " %-8s | %5s |\n%s----------|-------|\n", "status", "reward", rule.c_str());
+  header += fmt::format(" {:<8} | {:>6} | reason |", "status", "reward");
+  rule += "----------|--------|--------|";
+  fmt::print(out, "\n{}\n{}\n", header, rule);
 }
 
 void printJumpRow(std::FILE* out, const EpisodeRecord& r, const JumpOutcome& o, const EnvironmentSchema& schema) {
   const Trace& trace = r.result.episode.trace;
   const TargetSpec& t = r.episode.target;
   const Landing& l = o.landing;
-  std::fprintf(out, "| %3zu | %5.2f %5.2f %5.2f %6.1f | %5.2f %5.2f %5.2f %6.1f | %6.1f | %5.1f |", r.index, t.x, t.y,
-               t.z, t.yaw * kDeg, l.displacement.x(), l.displacement.y(), l.displacement.z(), l.yaw * kDeg,
-               100 * l.error_xy, l.error_yaw * kDeg);
+  std::string row = fmt::format("| {:>3} | {} {} {} {} | {} {} {} {} | {} | {} |", r.index, cell(t.x, 5, 2),
+                                cell(t.y, 5, 2), cell(t.z, 5, 2), cell(t.yaw * kDeg, 6, 1), cell(l.displacement.x(), 5, 2),
+                                cell(l.displacement.y(), 5, 2), cell(l.displacement.z(), 5, 2), cell(l.yaw * kDeg, 6, 1),
+                                cell(100 * l.error_xy, 6, 1), cell(l.error_yaw * kDeg, 7, 1));
   for (const MetricSpec* m : tableColumns(schema)) {
-    std::fprintf(out, " %*s |", static_cast<int>(columnWidth(*m)), columnCell(trace, *m).c_str());
+    row += fmt::format(" {:>{}} |", columnCell(trace, *m), columnWidth(*m));
   }
-  std::fprintf(out, " %-8s | %5.3f |\n", o.status.c_str(), r.result.reward);
-  if (!o.reason.empty()) std::fprintf(out, "|     |   %s\n", o.reason.c_str());
+  // One markdown row per jump: the reason is its last cell ("|" in it would split the row).
+  std::string reason = o.reason;
+  std::replace(reason.begin(), reason.end(), '|', '/');
+  row += fmt::format(" {:<8} | {} | {} |", o.status, cell(r.result.reward, 6, 3), reason);
+  fmt::print(out, "{}\n", row);
 }
 
 void printJumpSummary(std::FILE* out, const JumpStatistics& s, double wall_clock_s) {
@@ -228,7 +248,8 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
 
 void JumpResultsFiles::write(const std::string& dir) const {
   namespace fs = std::filesystem;
-  replaceFileAtomically((fs::path(dir) / "results.json").string(), json_.dump(2) + "\n", "results file");
+  const nlohmann::json document = {{"format", "pronk-results"}, {"version", 2}, {"run", run_}, {"jumps", json_}};
+  replaceFileAtomically((fs::path(dir) / "results.json").string(), document.dump(2) + "\n", "results file");
   std::string csv =
       "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,error_yaw_deg,"
       "status,reward,lift_off,touchdown,at_rest,";
