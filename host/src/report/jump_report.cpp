@@ -73,6 +73,7 @@ std::vector<const MetricSpec*> tableColumns(const EnvironmentSchema& schema) {
 
 // A number in a table cell, right-aligned; "-" where it does not exist.
 std::string cell(double v, int width, int precision) {
+  if (std::fabs(v) < 0.5 * std::pow(10.0, -precision)) v = 0;  // no "-0.00" for a tiny negative
   return std::isfinite(v) ? fmt::format("{:>{}.{}f}", v, width, precision) : fmt::format("{:>{}}", "-", width);
 }
 
