@@ -125,8 +125,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
                                {"policy_fingerprint", policy_name == "ballistic" ? "" : fileFingerprint(policy_name)},
                                {"sweep", options.sweep.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.sweep)},
                                {"seed", nullptr},
-                               {"cases", cases.size()},
-                               {"end_at_rest_s", options.full_episodes ? 0.0 : RolloutOptions{}.end_at_rest}};
+                               {"cases", cases.size()}};
   for (const SweepSpec& sweep : scenario.sweeps)
     if (sweep.name == options.sweep && sweep.kind == SweepSpec::Kind::Random) provenance["seed"] = sweep.seed;
   nlohmann::json parameters = nlohmann::json::object();  // every declared parameter, as the environment got it
@@ -158,6 +157,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   JumpStatistics stats;
   JumpResultsFiles files(schema);
   provenance["jobs"] = pool.threads();
+  provenance["end_at_rest_s"] = rollout.end_at_rest;
   files.setRun(provenance);
   Progress progress("jump", cases.size());
   const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);

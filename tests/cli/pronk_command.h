@@ -13,20 +13,7 @@ struct Outcome {
   std::string output;  // stdout and stderr
 };
 
-// Runs `pronk ARGS` and returns its exit status and output.
-inline Outcome pronk(const std::string& args) {
-  const std::string command = std::string(PRONK_EXE) + " " + args + " 2>&1";
-  Outcome out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buffer;
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) out.output.append(buffer.data(), n);
-  const int raw = pclose(pipe);
-  out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return out;
-}
-
-// Runs a shell command line as it is (no pronk prefix): its status and output.
+// Runs a shell command line as it is: its exit status and output (stdout and stderr).
 inline Outcome shell(const std::string& command_line) {
   Outcome out;
   FILE* pipe = popen((command_line + " 2>&1").c_str(), "r");
@@ -37,6 +24,9 @@ inline Outcome shell(const std::string& command_line) {
   out.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return out;
 }
+
+// Runs `pronk ARGS` and returns its exit status and output.
+inline Outcome pronk(const std::string& args) { return shell(std::string(PRONK_EXE) + " " + args); }
 
 inline std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
 inline std::string cliScenario(const std::string& name) {

@@ -47,6 +47,17 @@ TextPosition positionOf(const std::string& text, std::size_t offset) {
   return p;
 }
 
+std::string nlohmannDetail(const std::string& what) {
+  std::string detail = what;
+  if (const std::size_t end = detail.find("] "); detail.rfind('[', 0) == 0 && end != std::string::npos) {
+    detail = detail.substr(end + 2);
+  }
+  if (const std::size_t colon = detail.find(": "); detail.rfind("parse error", 0) == 0 && colon != std::string::npos) {
+    detail = detail.substr(colon + 2);
+  }
+  return detail;
+}
+
 // Where a value is written, and for an object or array the node of its insides.
 struct Entry {
   std::size_t offset = 0;
@@ -88,19 +99,6 @@ struct CountingIterator {
   bool operator!=(const CountingIterator& o) const { return at != o.at; }
 };
 
-// nlohmann's what() without its "[json.exception.parse_error.101] parse error
-// at line 2, column 11: " prefix: the caller says where.
-std::string withoutPrefix(const std::string& what) {
-  std::string detail = what;
-  if (const std::size_t end = detail.find("] "); detail.rfind('[', 0) == 0 && end != std::string::npos) {
-    detail = detail.substr(end + 2);
-  }
-  if (const std::size_t colon = detail.find(": "); detail.rfind("parse error", 0) == 0 && colon != std::string::npos) {
-    detail = detail.substr(colon + 2);
-  }
-  return detail;
-}
-
 }  // namespace
 
 class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
@@ -136,7 +134,7 @@ class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
 
   bool parse_error(std::size_t position, const std::string& last_token, const nlohmann::detail::exception& ex) override {
     Refusal r;
-    r.message = withoutPrefix(ex.what());
+    r.message = nlohmannDetail(ex.what());
     if (ex.id == 406) {  // a number beyond a double: point at its first character, the token's last writing
       const std::string_view read(begin_, std::size_t(read_ - begin_));
       const std::size_t at = last_token.empty() ? std::string_view::npos : read.rfind(last_token);

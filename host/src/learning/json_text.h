@@ -38,6 +38,10 @@ struct TextPosition {
 // offset past the end is the position just after the last character.
 TextPosition positionOf(const std::string& text, std::size_t offset);
 
+// nlohmann's what() without its "[json.exception.parse_error.101] parse error
+// at line 2, column 11: " prefix: pronk's messages say where themselves.
+std::string nlohmannDetail(const std::string& what);
+
 // What nlohmann's parsed document does not keep, from one pass of its SAX
 // parser over the text: where each key and array element is written, the first
 // key written twice in one object, and where and why the text is refused

@@ -45,21 +45,6 @@ std::string checksumOf(nlohmann::json doc) {
   return out;
 }
 
-// nlohmann's what() without its "[json.exception.parse_error.101] parse error
-// at line 2, column 11: " prefix: we say where ourselves.
-std::string nlohmannDetail(const std::string& what) {
-  std::string detail = what;
-  if (!detail.empty() && detail[0] == '[') {
-    const std::size_t end = detail.find("] ");
-    if (end != std::string::npos) detail = detail.substr(end + 2);
-  }
-  if (detail.rfind("parse error", 0) == 0) {
-    const std::size_t colon = detail.find(": ");
-    if (colon != std::string::npos) detail = detail.substr(colon + 2);
-  }
-  return detail;
-}
-
 // A JSON value as a message shows it: its type, and short scalars themselves.
 std::string describe(const json& v) {
   if (v.is_string()) {
@@ -392,7 +377,7 @@ std::string policyToJson(const MlpPolicy& policy) {
     doc["checksum"] = checksumOf(nlohmann::json::parse(doc.dump()));
     writeValue(out, doc, 0);
   } catch (const nlohmann::json::exception& e) {  // e.g. a description that is not UTF-8
-    throw Error("policy: cannot be written as JSON: " + nlohmannDetail(e.what()));
+    throw Error("policy: cannot be written as JSON: " + policy_file::nlohmannDetail(e.what()));
   }
   return out + "\n";
 }
