@@ -226,7 +226,8 @@ Subcommand declareCompletion(CLI::App& app, const CommonOptions&) {
                                                    "(source it, or install it as bash-completion/completions/pronk)");
   cmd->add_option("shell", *shell, "the shell (bash)")->check(CLI::IsMember({"bash"}));
   const CLI::App* root = &app;
-  return {cmd, [root] {
+  // The lambda owns the option's storage: CLI11 writes the parsed value into it after this returns.
+  return {cmd, [root, shell] {
             std::cout << bashCompletion(*root);
             return int(kOk);
           }};
