@@ -69,8 +69,13 @@ int pluginsCommand(const CommonOptions& common) {
       for (int32_t i = 0; i < f->param_count; ++i) {
         const pronk_param_decl& p = f->params[i];
         const std::string unit = p.unit && *p.unit ? fmt::format("[{}] ", p.unit) : "";
-        fmt::print("              param {:<22} default {:<12} {:<18} {}{}\n", p.name,
-                   p.default_value ? p.default_value : "(required)", rangeOf(p), unit,
+        // A platform default (ABI 1.5) shows as the platform's; an empty one as "".
+        const std::string default_text =
+            p.platform_default ? fmt::format("platform's {}", p.platform_default)
+            : !p.default_value ? std::string("(required)")
+            : *p.default_value ? std::string(p.default_value)
+                               : std::string("\"\"");
+        fmt::print("              param {:<22} default {:<17} {:<18} {}{}\n", p.name, default_text, rangeOf(p), unit,
                    p.description ? p.description : "");
       }
     }

@@ -44,7 +44,7 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
   } else {
     PluginRegistry registry;
     loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
-    auto controller = makeController(scenario.platform.controller, registry, world, nullptr);
+    auto controller = makeController(scenario.platform, registry, world, nullptr);
     EpisodeOptions episode;
     episode.duration = options.duration > 0 ? options.duration : scenario.sim.duration;
     episode.record_body_poses = true;

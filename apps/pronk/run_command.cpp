@@ -70,7 +70,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
                  "target is drawn in videos)\n";
   }
   Trace events;  // controller events are collected here and merged into the episode trace
-  auto controller = makeController(scenario.platform.controller, registry, world, &events);
+  auto controller = makeController(scenario.platform, registry, world, &events);
 
   const render::VideoOptions video = videoOptions(scenario, options);
   if (!video.path.empty()) checkWritable(video.path);  // before spending time on the simulation

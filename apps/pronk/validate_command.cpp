@@ -21,7 +21,8 @@ namespace {
 // Returns the environment's name.
 std::string checkEnvironment(const Scenario& scenario, const PluginRegistry& registry, const World* world) {
   const pronk_factory& env = findEnvironment(*scenario.environment, registry);
-  const ResolvedParams params = resolveParams(env, scenario.environment->params, scenario.environment->where);
+  const ResolvedParams params = resolveParams(env, scenario.environment->params, scenario.environment->where,
+                                              scenario.platform.urdf.empty() ? nullptr : &scenario.platform);
   if (!world) return env.name;
   try {
     checkFactoryFitsWorld(env, PRONK_FACTORY_ENVIRONMENT, registry.libraryOf(&env)->path(), *world);
@@ -58,7 +59,7 @@ void validatePart(const CommonOptions& common, const std::string& file) {
   if (plugin_controller || part.environment) {
     PluginRegistry registry;
     loadPlugins(registry, common.plugin_paths, &part.platform.controller);
-    if (plugin_controller) checkController(part.platform.controller, registry);
+    if (plugin_controller) checkController(part.platform, registry);
     if (part.environment) {
       environment = ", environment " + checkEnvironment(part, registry, world ? &*world : nullptr);
       if (!world) environment += " (parameters checked against its declarations)";
@@ -80,7 +81,7 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
       loadPlugins(registry, common.plugin_paths, &scenario.platform.controller);
       World world(scenario);  // reads the URDF, checks the feet, legs and joint names
       for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
-      if (!scenario.platform.controller.factory.empty()) checkController(scenario.platform.controller, registry);
+      if (!scenario.platform.controller.factory.empty()) checkController(scenario.platform, registry);
       std::string environment;
       if (scenario.environment) environment = ", environment " + checkEnvironment(scenario, registry, &world);
       // Every case a run would set up (a step platform needs room for its edge):

@@ -169,13 +169,15 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("jump"), std::string::npos);
-  EXPECT_NE(o.output.find("ABI 1.4"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("ABI 1.5"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
             std::string::npos)
       << o.output;
   // Each parameter with its default, the range the host checks and its unit (docs/plugin-abi.md).
-  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param kp +default 100 +in \[0, 1000\] +\[N m/rad\])")))
+  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param kp +default platform's kp +in \[0, 1000\] +\[N m/rad\])")))
       << o.output;
+  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param stance +default platform's stance )"))) << o.output;
+  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param workspace_z +default "" )"))) << o.output;
   EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(param duration +default 1.5 +in \[0.01, 60\] +\[s\])")))
       << o.output;
 }
@@ -330,7 +332,7 @@ TEST(Cli, AScenarioNeverWritesAVideoByItselfNorOutsideOut) {
 TEST(Cli, VersionMissingScenarioAndPluginAfterTheSubcommand) {
   const Outcome version = pronk("--version");
   EXPECT_EQ(version.status, 0) << version.output;
-  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.4, commit "), std::string::npos)
+  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.5, commit "), std::string::npos)
       << version.output;
   // A missing scenario is bad input (exit 3) named by the loader, for every command that reads one.
   for (const std::string command : {"run", "validate", "render -o x.mp4"}) {

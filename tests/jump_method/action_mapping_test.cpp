@@ -267,4 +267,23 @@ TEST(JumpPlaneAzimuth, TwistInPlaceIsForwardAndNonFiniteIsRejected) {
 }
 
 }  // namespace
+// Lengths scale with the robot's legs; the Go1 keeps the paper's numbers exactly.
+TEST(ActionMapping, RangesScaleTheirLengthsWithTheLegs) {
+  using P = ActionParameter;
+  EXPECT_EQ(lengthScaleToGo1(0.426 + 1e-7), 1.0);
+  EXPECT_DOUBLE_EQ(lengthScaleToGo1(0.5), 0.5 / 0.426);
+  EXPECT_THROW(lengthScaleToGo1(0.0), std::invalid_argument);
+  EXPECT_THROW(lengthScaleToGo1(std::nan("")), std::invalid_argument);
+  const ActionRanges go1 = scaledActionRanges(1.0), big = scaledActionRanges(1.5);
+  for (int i = 0; i < kActionSize; ++i) {
+    EXPECT_EQ(go1.bounds[i].min, ActionRanges().bounds[i].min);
+    EXPECT_EQ(go1.bounds[i].max, ActionRanges().bounds[i].max);
+  }
+  EXPECT_DOUBLE_EQ(big[P::kLiftOffRadius].max, 0.6);
+  EXPECT_DOUBLE_EQ(big[P::kLiftOffRadius].min, 0.3);
+  EXPECT_DOUBLE_EQ(big[P::kExplosiveDistance].max, 0.45);
+  EXPECT_EQ(big[P::kThrustDuration].max, go1[P::kThrustDuration].max);  // times and speeds stay
+  EXPECT_EQ(big[P::kLiftOffSpeed].max, go1[P::kLiftOffSpeed].max);
+}
+
 }  // namespace pronk::jump

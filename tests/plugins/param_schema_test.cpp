@@ -137,5 +137,35 @@ TEST_F(ParamSchema, GuidedJumpDefaultsResolve) {
   }
 }
 
+// ABI 1.5: stance, kp and kd default to the platform's, when the scenario
+// leaves them out; the declared default stays for a scene without a platform.
+TEST_F(ParamSchema, GuidedJumpTakesTheStanceAndGainsFromThePlatform) {
+  registry_.load(PRONK_GUIDED_JUMP_PLUGIN);
+  const pronk_factory* f = registry_.find(PRONK_FACTORY_ENVIRONMENT, "jump");
+  ASSERT_NE(f, nullptr);
+  PlatformSpec platform;
+  platform.stance = {0.0, 0.8, -1.5};
+  platform.initial_where = {"a1.xml", 7};
+  platform.joints.kp = 60;
+  platform.joints.kd = 4.5;
+  platform.joints_where = {"a1.xml", 9};
+  const ResolvedParams p = resolveParams(*f, {set("kd", "3", 30)}, owner_, &platform);
+  EXPECT_EQ(*p.find("stance"), "0 0.8 -1.5");
+  EXPECT_EQ(*p.find("kp"), "60");
+  EXPECT_EQ(*p.find("kd"), "3");  // the scenario's setting wins
+  // A platform that places its joints by name gives no per-leg stance: the declared default.
+  platform.stance.clear();
+  EXPECT_EQ(*resolveParams(*f, {}, owner_, &platform).find("stance"), "0 0.75 -1.5");
+  // A platform stance the parameter cannot take is an error at the platform's line.
+  platform.stance = {0.0, 0.8};
+  try {
+    resolveParams(*f, {}, owner_, &platform);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("a1.xml:7: the platform's stance '0 0.8' for parameter 'stance' of environment "
+                                    "'jump'"));
+  }
+}
+
 }  // namespace
 }  // namespace pronk

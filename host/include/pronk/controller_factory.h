@@ -15,13 +15,15 @@ namespace pronk {
 void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& explicit_paths,
                  const ControllerSpec* controller = nullptr);
 
-// Checks that the scenario's controller exists and its parameters fit its
-// schema; throws InputError at the offending line.
-void checkController(const ControllerSpec& spec, const PluginRegistry& registry);
+// Checks that the platform's controller exists and its parameters fit its
+// schema (defaults the platform gives included); throws InputError at the
+// offending line.
+void checkController(const PlatformSpec& platform, const PluginRegistry& registry);
 
 // A built-in controller (when the name is one and no plugin is named) or a
-// plugin controller with its parameters resolved against the factory schema.
-std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const PluginRegistry& registry,
+// plugin controller with its parameters resolved against the factory schema
+// and the platform (ABI 1.5 platform defaults).
+std::unique_ptr<Controller> makeController(const PlatformSpec& platform, const PluginRegistry& registry,
                                            const World& world, Trace* trace);
 
 // The scenario's environment factory; throws InputError at the element for an

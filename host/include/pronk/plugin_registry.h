@@ -135,12 +135,29 @@ class ResolvedParams {
 // vector of the wrong length.
 std::string checkParamValue(const pronk_param_decl& decl, const std::string& text);
 
+// A platform property a parameter may default to (ABI 1.5,
+// pronk_param_decl::platform_default), as text, with where the platform gives it.
+struct PlatformValue {
+  std::string text;
+  SourceLocation where;
+};
+// The properties this host knows ("stance", "kp", "kd"), in that order.
+const std::vector<std::string>& platformPropertyNames();
+// The parameter type each property has (PRONK_PARAM_VECTOR for "stance", REAL else).
+uint32_t platformPropertyType(const std::string& name);
+// The platform's value of a property; nullopt when the platform does not give it
+// (a stance given joint by joint instead of per leg).
+std::optional<PlatformValue> platformValue(const PlatformSpec& platform, const std::string& name);
+
 // Checks scenario settings against a factory's declared parameters and fills in the
-// defaults. Throws InputError at the setting's location for an unknown name (listing
-// the known ones), a value checkParamValue() rejects, or a name set twice; at `owner`
-// for a required parameter that is missing.
+// defaults: the platform's value for a parameter that declares a platform_default
+// (when `platform` is given and has it), else the declared default. Throws
+// InputError at the setting's location for an unknown name (listing the known ones),
+// a value checkParamValue() rejects, or a name set twice; at the platform's for a
+// platform value the parameter does not accept; at `owner` for a required parameter
+// that is missing.
 ResolvedParams resolveParams(const pronk_factory& factory, const std::vector<ParamSetting>& settings,
-                             const SourceLocation& owner);
+                             const SourceLocation& owner, const PlatformSpec* platform = nullptr);
 
 // A controller instance: create() in the constructor, destroy() in the destructor.
 // `host` must outlive the instance. Failures throw Error naming the factory, the

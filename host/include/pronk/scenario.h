@@ -81,6 +81,7 @@ struct PlatformSpec {
   // (and the built-in controllers) keep the mass without it (the paper's MV test).
   double unreported_trunk_mass = 0;
   JointSettings joints;
+  SourceLocation joints_where;               // the <joints> element
   ControllerSpec controller;
   SourceLocation where;
 };

@@ -154,8 +154,35 @@ std::string checkParamValue(const pronk_param_decl& decl, const std::string& raw
   }
 }
 
+const std::vector<std::string>& platformPropertyNames() {
+  static const std::vector<std::string> names = {"stance", "kp", "kd"};
+  return names;
+}
+
+uint32_t platformPropertyType(const std::string& name) {
+  return name == "stance" ? PRONK_PARAM_VECTOR : PRONK_PARAM_REAL;
+}
+
+std::optional<PlatformValue> platformValue(const PlatformSpec& platform, const std::string& name) {
+  // Shortest text that reads back as the same double.
+  auto text = [](double v) {
+    char buffer[32];
+    const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+    return std::string(buffer, r.ptr);
+  };
+  const SourceLocation& joints = platform.joints_where.file.empty() ? platform.where : platform.joints_where;
+  if (name == "kp") return PlatformValue{text(platform.joints.kp), joints};
+  if (name == "kd") return PlatformValue{text(platform.joints.kd), joints};
+  if (name == "stance" && !platform.stance.empty()) {
+    std::string joined;
+    for (double q : platform.stance) joined += (joined.empty() ? "" : " ") + text(q);
+    return PlatformValue{joined, platform.initial_where.file.empty() ? platform.where : platform.initial_where};
+  }
+  return std::nullopt;
+}
+
 ResolvedParams resolveParams(const pronk_factory& factory, const std::vector<ParamSetting>& settings,
-                             const SourceLocation& owner) {
+                             const SourceLocation& owner, const PlatformSpec* platform) {
   const std::string who = factoryKindName(factory.kind) + " '" + factory.name + "'";
   auto declOf = [&](const std::string& name) -> const pronk_param_decl* {
     for (int32_t i = 0; i < factory.param_count; ++i) {
@@ -192,8 +219,18 @@ ResolvedParams resolveParams(const pronk_factory& factory, const std::vector<Par
     for (const ParamSetting& s : settings) {
       if (s.name == d.name) set = &s;
     }
+    const std::optional<PlatformValue> from_platform =
+        platform && d.platform_default ? platformValue(*platform, d.platform_default) : std::nullopt;
     if (set) {
       out.add(d.name, set->value);
+    } else if (from_platform) {
+      const std::string why = checkParamValue(d, from_platform->text);
+      if (!why.empty()) {
+        throw InputError(from_platform->where, "the platform's " + std::string(d.platform_default) + " '" +
+                                                   from_platform->text + "' for parameter '" + d.name + "' of " +
+                                                   who + ": " + why + " (set the parameter in the scenario)");
+      }
+      out.add(d.name, from_platform->text);
     } else if (d.required || !d.default_value) {
       std::string what = "missing required parameter '" + std::string(d.name) + "' of " + who;
       if (d.description && *d.description) what += " (" + std::string(d.description) + ")";

@@ -116,6 +116,17 @@ std::vector<pronk_param_decl> readParams(const Checker& check, const pronk_facto
     if (d.type == PRONK_PARAM_VECTOR && d.vector_size > kMaxVectorSize) {
       check.fail(param + " declares a vector of " + std::to_string(d.vector_size) + " numbers");
     }
+    if (d.platform_default) {  // 1.5
+      const std::vector<std::string>& known = platformPropertyNames();
+      if (std::find(known.begin(), known.end(), d.platform_default) == known.end()) {
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        check.fail(param + " defaults to the platform's " + quoted(d.platform_default) + ", not one of " + list);
+      }
+      if (d.type != platformPropertyType(d.platform_default)) {
+        check.fail(param + " defaults to the platform's '" + d.platform_default + "' but is not of its type");
+      }
+    }
     if (!d.required) {
       if (!d.default_value) check.fail(param + " is neither required nor has a default value");
       const std::string why = checkParamValue(d, d.default_value);

@@ -197,7 +197,7 @@ RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& re
   setup.schema = environmentSchema(*setup.factory);
   std::vector<ParamSetting> params = spec.params;
   for (const ParamSetting& p : overrides) setParam(params, p);
-  setup.params = resolveParams(*setup.factory, params, spec.where);
+  setup.params = resolveParams(*setup.factory, params, spec.where, &scenario.platform);
   if (!policy_name.empty()) setup.policy = makePolicy(policy_name, *setup.factory);
   return setup;
 }

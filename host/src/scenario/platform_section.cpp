@@ -200,8 +200,10 @@ PlatformSpec readPlatform(const XMLElement& e, const SourceFile& file) {
     if (name == "robot") readRobot(*k, file, p);
     else if (name == "feet") readFeet(*k, file, p);
     else if (name == "initial") readInitial(*k, file, p);
-    else if (name == "joints") readJoints(*k, file, p.joints);
-    else if (name == "controller") p.controller = readController(*k, file);
+    else if (name == "joints") {
+      readJoints(*k, file, p.joints);
+      p.joints_where = ElementReader(*k, file).where();
+    } else if (name == "controller") p.controller = readController(*k, file);
   }
   return p;
 }

@@ -65,7 +65,8 @@ void loadPlugins(PluginRegistry& registry, const std::vector<std::string>& expli
   registry.loadSearchPath(PluginRegistry::searchPath(entries));
 }
 
-void checkController(const ControllerSpec& spec, const PluginRegistry& registry) {
+void checkController(const PlatformSpec& platform, const PluginRegistry& registry) {
+  const ControllerSpec& spec = platform.controller;
   if (isBuiltin(spec)) {
     if (!spec.params.empty()) {
       throw InputError(spec.params.front().where,
@@ -73,15 +74,16 @@ void checkController(const ControllerSpec& spec, const PluginRegistry& registry)
     }
     return;
   }
-  resolveParams(findFactory(spec, registry), spec.params, spec.where);
+  resolveParams(findFactory(spec, registry), spec.params, spec.where, &platform);
 }
 
-std::unique_ptr<Controller> makeController(const ControllerSpec& spec, const PluginRegistry& registry,
+std::unique_ptr<Controller> makeController(const PlatformSpec& platform, const PluginRegistry& registry,
                                            const World& world, Trace* trace) {
-  checkController(spec, registry);
+  checkController(platform, registry);
+  const ControllerSpec& spec = platform.controller;
   if (isBuiltin(spec)) return makeBuiltinController(spec.factory, world, trace);
   const pronk_factory& factory = findFactory(spec, registry);
-  const ResolvedParams params = resolveParams(factory, spec.params, spec.where);
+  const ResolvedParams params = resolveParams(factory, spec.params, spec.where, &platform);
   return std::make_unique<PluginController>(factory, registry.libraryOf(&factory)->path(), params, world, trace);
 }
 

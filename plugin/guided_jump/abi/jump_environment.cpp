@@ -62,7 +62,43 @@ struct EnvironmentSettings {
   double max_speed_shortfall = 0.1;
   double knee_clearance = 0.01;
   double sideways_roll_gain = 0.0, sideways_roll_rate_gain = 0.0;
+  // As set (13 numbers each), or empty: derived from the robot's leg length once
+  // the host is known (deriveFromRobot).
+  std::vector<double> action_min, action_max;
+  bool derive_workspace_z = false;
 };
+
+void checkRanges(const EnvironmentSettings& s) {
+  try {
+    s.ranges.check();
+  } catch (const std::invalid_argument& e) {
+    throw InvalidArgument(std::string("parameters 'action_min' / 'action_max': ") + e.what());
+  }
+}
+
+// The paper's Go1 workspace band of the trunk height (m), scaled like the ranges.
+constexpr double kGo1WorkspaceZ[2] = {0.15, 0.40};
+
+// The action ranges and the workspace band from the robot: lengths scaled by
+// its leg length over the Go1's (no leg model: the Go1's own numbers).
+void deriveFromRobot(EnvironmentSettings* s, const std::optional<std::array<jump::LegGeometry, jump::kLegCount>>& legs) {
+  double scale = 1.0;
+  if (legs) {
+    double length = 0.0;
+    for (const jump::LegGeometry& leg : *legs) length += (leg.thigh_length + leg.calf_length) / jump::kLegCount;
+    scale = jump::lengthScaleToGo1(length);
+  }
+  const jump::ActionRanges derived = jump::scaledActionRanges(scale);
+  for (int i = 0; i < kActionSize; ++i) {
+    s->ranges.bounds[i] = {s->action_min.empty() ? derived.bounds[i].min : s->action_min[i],
+                           s->action_max.empty() ? derived.bounds[i].max : s->action_max[i]};
+  }
+  checkRanges(*s);
+  if (s->derive_workspace_z) {
+    s->reward.workspace_z_min = scale * kGo1WorkspaceZ[0];
+    s->reward.workspace_z_max = scale * kGo1WorkspaceZ[1];
+  }
+}
 
 EnvironmentSettings readSettings(const ParamReader& read) {
   EnvironmentSettings s;
@@ -70,17 +106,31 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   readCommonJumpSettings(read, &s.jump);
   s.duration = read.real("duration");
   const std::vector<double> lo = read.vector("action_min"), hi = read.vector("action_max");
-  for (int i = 0; i < kActionSize; ++i) s.ranges.bounds[i] = {lo[i], hi[i]};
+  for (const char* name : {"action_min", "action_max"}) {
+    const size_t n = read.vector(name).size();
+    if (n != 0 && n != kActionSize) {
+      throw InvalidArgument(std::string("parameter '") + name + "' has " + std::to_string(n) +
+                            " numbers; it takes 13, or none for the robot's own");
+    }
+  }
+  s.action_min = lo;
+  s.action_max = hi;
   s.ranges.raw_limit = read.real("raw_limit");
-  try {
-    s.ranges.check();
-  } catch (const std::invalid_argument& e) {
-    throw InvalidArgument(std::string("parameters 'action_min' / 'action_max': ") + e.what());
+  if (!lo.empty() && !hi.empty()) {  // checked now; one left empty is checked once derived
+    for (int i = 0; i < kActionSize; ++i) s.ranges.bounds[i] = {lo[i], hi[i]};
+    checkRanges(s);
   }
   s.reward.friction_coefficient = read.real("friction_coefficient");
   const std::vector<double> band = read.vector("workspace_z");
-  s.reward.workspace_z_min = band[0];
-  s.reward.workspace_z_max = band[1];
+  if (band.size() != 0 && band.size() != 2) {
+    throw InvalidArgument("parameter 'workspace_z' has " + std::to_string(band.size()) +
+                          " numbers; it takes 2 (low, high), or none for the robot's own");
+  }
+  s.derive_workspace_z = band.empty();
+  if (!s.derive_workspace_z) {
+    s.reward.workspace_z_min = band[0];
+    s.reward.workspace_z_max = band[1];
+  }
   s.reward.error_scale = read.real("error_scale");
   s.reward.raw_action_limit = s.ranges.raw_limit;
   s.apex_clearance = read.real("apex_clearance");
@@ -120,6 +170,13 @@ class JumpEnvironment {
                                 "not check the leg workspace")
                                    .c_str());
     }
+    if (!legs_ && (settings.action_min.empty() || settings.action_max.empty() || settings.derive_workspace_z) &&
+        host->log) {
+      host->log(host->host, 1, "jump: no leg length to scale the action ranges and the workspace band by; they are "
+                               "the Go1's (set action_min, action_max and workspace_z)");
+    }
+    deriveFromRobot(&settings_, legs_);
+    settings_.reward.raw_action_limit = settings_.ranges.raw_limit;
     double g[3] = {0, 0, 0};
     host->gravity(host->host, g);
     gravity_ = vec(g);
@@ -186,7 +243,9 @@ class JumpEnvironment {
     target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
     target.yaw_rad = observation[3];
     // Aimed short by where the controller's landing will stop the CoM.
-    const jump::PlannedJump plan = jump::planPriorJump(target, config, &JumpController::landingStop);
+    const LandingSettings& landing = settings_.jump.landing;
+    const jump::PlannedJump plan = jump::planPriorJump(
+        target, config, [&landing](const Eigen::Vector3d& v) { return JumpController::landingStop(landing, v); });
     if (!plan.feasible && host_->log) {
       host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + plan.reason).c_str());
     }

@@ -21,10 +21,13 @@ constexpr const char* kFeedforwardDoc =
 
 // The stance controller's (control/hold_controller.h), both factories.
 const pronk_param_decl kHoldParamDecls[] = {
-    {kDeclSize, "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad", "joint stiffness towards the stance"},
-    {kDeclSize, "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad", "joint damping"},
+    // Defaults from the platform (ABI 1.5); the Go1's for a host before 1.5.
+    {kDeclSize, "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad",
+     "joint stiffness towards the stance (default: the platform's <joints kp>)", "kp"},
+    {kDeclSize, "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad",
+     "joint damping (default: the platform's <joints kd>)", "kd"},
     {kDeclSize, "stance", PRONK_PARAM_VECTOR, 0, -3.2, 3.2, 3, "0 0.75 -1.5", "rad",
-     "joint positions held by every leg: hip, thigh, calf"},
+     "joint positions held by every leg: hip, thigh, calf (default: the platform's <initial stance>)", "stance"},
     {kDeclSize, "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
      "1: feet in contact carry the weight through J^T f; 0: PD only"},
     {kDeclSize, "motor", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "effort", "", kMotorDoc},
@@ -51,18 +54,23 @@ const pronk_param_decl kLandingFeet = {
     kDeclSize, "landing_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "all", "",
     "landing: once every foot has touched down, the body wrench is shared by all the feet (all) or only by those "
     "in contact now (contact, the controller before session 16)"};
+// The landing's body wrench (control/jump_phases.h, LandingSettings), both factories.
+const pronk_param_decl kLandingParamDecls[] = {
+    {kDeclSize, "landing_frequency", PRONK_PARAM_REAL, 0, 0.1, 100.0, 0, "5", "rad/s",
+     "landing: natural frequency of the CoM's critically damped stop (also where the planner expects it to stop)"},
+    {kDeclSize, "landing_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0.6", "",
+     "landing: the share of the normal force the CoM's stop may ask sideways"},
+    {kDeclSize, "landing_tilt_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "4", "N m/rad/kg",
+     "landing: trunk levelling stiffness per kg of the robot's mass"},
+    {kDeclSize, "landing_tilt_damping", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0.4", "N m s/rad/kg",
+     "landing: trunk levelling damping per kg of the robot's mass"},
+    {kDeclSize, "landing_ground_reach", PRONK_PARAM_REAL, 0, 0.0, 0.5, 0, "0.01", "m",
+     "landing: a foot still in the air reaches this far below the feet that are down"},
+};
+
 // Both factories too, but each with its own default (see the lists below).
 pronk_param_decl feedforwardDecl(const char* default_value) {
   return {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, default_value, "", kFeedforwardDoc};
-}
-
-std::string rangeText(bool upper) {
-  const jump::ActionRanges r = jump::go1ActionRanges();
-  std::string text;
-  for (int i = 0; i < jump::kActionSize; ++i) {
-    text += (i ? " " : "") + fmt::format("{:.15g}", upper ? r.bounds[i].max : r.bounds[i].min);
-  }
-  return text;
 }
 
 }  // namespace
@@ -86,13 +94,13 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
     d.push_back(kLandingFeet);
+    d.insert(d.end(), std::begin(kLandingParamDecls), std::end(kLandingParamDecls));
     return d;
   }();
   return decls;
 }
 
 const std::vector<pronk_param_decl>& environmentParamDecls() {
-  static const std::string range_min = rangeText(false), range_max = rangeText(true);
   static const std::vector<pronk_param_decl> decls = [] {
     std::vector<pronk_param_decl> d(std::begin(kHoldParamDecls), std::end(kHoldParamDecls));
     const std::vector<pronk_param_decl> own = {
@@ -107,17 +115,20 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kLegIk,
         kStanceFeet,
         kLandingFeet,
-        {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_min.c_str(), "SI",
+        // Empty: derived from the robot (action_mapping.h, scaledActionRanges).
+        {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
-         "s, m, rad, m/s, rad, 1, m, rad, rad/s); default Go1's, the paper's table"},
-        {kDeclSize, "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 13, range_max.c_str(), "SI",
-         "upper ends of the 13 action ranges"},
+         "s, m, rad, m/s, rad, 1, m, rad, rad/s); empty: the paper's Go1 table with r_p and d scaled by the "
+         "robot's leg length (thigh + calf) over the Go1's 0.426 m"},
+        {kDeclSize, "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
+         "upper ends of the 13 action ranges; empty: derived as action_min"},
         {kDeclSize, "raw_limit", PRONK_PARAM_REAL, 0, 0.01, 100.0, 0, "5", "",
          "raw policy outputs are clipped to +-this before the affine map"},
         {kDeclSize, "friction_coefficient", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.8", "",
          "mu of the reward's friction-cone term"},
-        {kDeclSize, "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 2, "0.15 0.40", "m",
-         "trunk height band of the reward's workspace term (Aliengo: 0.20 0.60)"},
+        {kDeclSize, "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 0, "", "m",
+         "trunk height band (2 numbers) of the reward's workspace term; empty: the paper's Go1 band 0.15 0.40 "
+         "scaled by the robot's leg length over the Go1's 0.426 m (the paper's Aliengo: 0.20 0.60)"},
         {kDeclSize, "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
          "sigma_e of the landing reward exp(-e / sigma_e)"},
         {kDeclSize, "apex_clearance", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
@@ -138,6 +149,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
          "roll rate range (0: off, the planner before it)"},
     };
     d.insert(d.end(), own.begin(), own.end());
+    d.insert(d.end(), std::begin(kLandingParamDecls), std::end(kLandingParamDecls));
     return d;
   }();
   return decls;
@@ -174,6 +186,11 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
     throw InvalidArgument("parameter 'landing_feet': '" + landing + "' is neither all nor contact");
   }
   s->landing_all_feet = landing == "all";
+  s->landing.frequency = read.real("landing_frequency");
+  s->landing.friction = read.real("landing_friction");
+  s->landing.tilt = read.real("landing_tilt_gain");
+  s->landing.tilt_damping = read.real("landing_tilt_damping");
+  s->landing.ground_reach = read.real("landing_ground_reach");
 }
 
 jump::MotorModel motorModelFromName(const std::string& name) {

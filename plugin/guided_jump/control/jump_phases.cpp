@@ -290,8 +290,8 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, moment, torque);
 }
 
-Eigen::Vector2d JumpController::landingStop(const Eigen::Vector3d& v) {
-  return jump::landingStopOffset(v, kLandingFriction, kLandingFrequency);
+Eigen::Vector2d JumpController::landingStop(const LandingSettings& landing, const Eigen::Vector3d& v) {
+  return jump::landingStopOffset(v, landing.friction, landing.frequency);
 }
 
 void JumpController::landingReference(const pronk_robot_state& s) {
@@ -322,7 +322,7 @@ void JumpController::landingReference(const pronk_robot_state& s) {
       // and down to the level of the feet that are down (a trunk that sits pitched
       // would otherwise keep one foot hanging above the ground for good).
       Eigen::Vector3d reach = R_des * stance_feet_.col(f);
-      if (down > 0) reach.z() = std::min(reach.z(), ground / down - kGroundReach - s.base_position[2]);
+      if (down > 0) reach.z() = std::min(reach.z(), ground / down - settings_.landing.ground_reach - s.base_position[2]);
       q_ref_.segment<3>(3 * f) = legIk(f, R.transpose() * reach);
     }
   }
@@ -373,16 +373,17 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
     const Eigen::Vector3d c = vec(s.com_position), v = vec(s.com_velocity);
     Eigen::Vector3d goal = *touchdown_com_;
     goal.z() = ground / down + standing_height_;
-    const double wn = kLandingFrequency;
+    const double wn = settings_.landing.frequency;
     const Eigen::Vector3d a_des = wn * wn * (goal - c) - 2.0 * wn * v;
     Eigen::Vector3d force = mass_ * (a_des - gravity_);
     force.z() = std::max(force.z(), 0.0);
-    const double horizontal = force.head<2>().norm(), cap = kLandingFriction * force.z();
+    const double horizontal = force.head<2>().norm(), cap = settings_.landing.friction * force.z();
     if (horizontal > cap) force.head<2>() *= cap / horizontal;
     const Eigen::Vector3d rpy = rpyFromRotation(rotationOf(s));
     const Eigen::Matrix3d yaw = Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    const Eigen::Vector3d moment = mass_ * (yaw * Eigen::Vector3d(-kLandingTilt * rpy.x(), -kLandingTilt * rpy.y(), 0.0) -
-                                            kLandingTiltDamping * vec(s.base_angular_velocity));
+    const double tilt = settings_.landing.tilt;
+    const Eigen::Vector3d moment = mass_ * (yaw * Eigen::Vector3d(-tilt * rpy.x(), -tilt * rpy.y(), 0.0) -
+                                            settings_.landing.tilt_damping * vec(s.base_angular_velocity));
     // A foot that touches with no load flickers in and out of contact; left out
     // of the wrench, it stays unloaded, and the robot balances on the other
     // side's feet until it tips over them (docs/results.md).
@@ -482,7 +483,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       // The CoM comes to rest landingStop() beyond the touchdown point: with that
       // goal the critically damped stop is a pure exponential, with no overshoot.
       touchdown_com_ = vec(s.com_position);
-      touchdown_com_->head<2>() += landingStop(vec(s.com_velocity));
+      touchdown_com_->head<2>() += landingStop(settings_.landing, vec(s.com_velocity));
       enter(JumpPhase::kLanding, s.time);
       all_down_seen_ = false;
       compute(s, torque);
@@ -517,7 +518,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       Eigen::Vector3d v_touchdown = vec(s.com_velocity);
       v_touchdown.z() = -std::sqrt(v_touchdown.z() * v_touchdown.z() - 2.0 * gravity_.z() * drop);
       Eigen::Vector3d ahead = Eigen::Vector3d::Zero();
-      ahead.head<2>() = landingStop(v_touchdown);
+      ahead.head<2>() = landingStop(settings_.landing, v_touchdown);
       for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, R.transpose() * (level * stance_feet_.col(f) + ahead));
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);

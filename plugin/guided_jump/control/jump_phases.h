@@ -58,6 +58,17 @@ namespace pronk::guided_jump {
 // The thrust's feed-forward (parameter `feedforward`, abi/jump_params.h).
 enum class Feedforward { kGravity, kDynamic, kDynamicAngular };
 
+// The landing's body wrench (parameters landing_*): a critically damped stop of
+// the CoM and a levelling of the trunk. The trunk gains are per kg of the robot's
+// mass, so the defaults (tuned on the Go1) carry over to another robot's mass.
+struct LandingSettings {
+  double frequency = 5.0;      // rad/s: natural frequency of the CoM's stop
+  double friction = 0.6;       // the share of the normal force the stop may ask sideways
+  double tilt = 4.0;           // N m / rad / kg: levelling stiffness
+  double tilt_damping = 0.4;   // N m s / rad / kg: levelling damping
+  double ground_reach = 0.01;  // m below the feet that are down, for a foot still in the air
+};
+
 struct JumpSettings {
   HoldSettings hold;                 // gains, stance (= landing pose), gravity compensation
   std::vector<double> action;        // empty: hold the stance; else 13 physical numbers (ActionParameter order)
@@ -83,6 +94,7 @@ struct JumpSettings {
   // the feet, not only those the host reports in contact now (false: those).
   bool landing_all_feet = true;
   std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
+  LandingSettings landing;
 };
 
 enum class JumpPhase { kHold, kStand, kThrust, kExplosive, kFlight, kDescend, kLanding };
@@ -131,20 +143,12 @@ class JumpController {
   static constexpr double kExtensionLead = 0.06;  // s: the landing extension ends this long before touchdown
   static constexpr double kLiftOffWait = 0.15;  // s after the plan's end before giving up on lift-off
   static constexpr double kLandingRamp = 0.3;   // s from touchdown until Kp is fully back
-  // Landing body wrench: natural frequency of the CoM's stop (rad/s), the share of
-  // the normal force it may ask sideways, and the trunk's levelling gains per kg
-  // (N m / rad / kg and N m s / rad / kg).
-  static constexpr double kLandingFrequency = 5.0;
-  static constexpr double kLandingFriction = 0.6;
-  static constexpr double kGroundReach = 0.01;  // m below the feet that are down, for a foot in the air
-  static constexpr double kLandingTilt = 4.0;
-  static constexpr double kLandingTiltDamping = 0.4;
 
   // Where the landing brings the CoM to rest, from the touchdown point
-  // (jump::landingStopOffset with kLandingFriction and kLandingFrequency). The
-  // airborne feet land that far ahead of the CoM, the landing wrench stops the
-  // CoM there, and the ballistic prior aims short by it.
-  static Eigen::Vector2d landingStop(const Eigen::Vector3d& touchdown_velocity);
+  // (jump::landingStopOffset with the landing's friction share and frequency).
+  // The airborne feet land that far ahead of the CoM, the landing wrench stops
+  // the CoM there, and the ballistic prior aims short by it.
+  static Eigen::Vector2d landingStop(const LandingSettings& landing, const Eigen::Vector3d& touchdown_velocity);
 
   // Throws InvalidArgument for an action of the wrong size or one the method rejects.
   JumpController(const pronk_host_api* host, const JumpSettings& settings);

@@ -91,6 +91,22 @@ void ActionRanges::check() const {
 
 ActionRanges go1ActionRanges() { return ActionRanges(); }
 
+double lengthScaleToGo1(double leg_length) {
+  if (!(std::isfinite(leg_length) && leg_length > 0.0)) {
+    throw std::invalid_argument("leg length must be finite and > 0, got " + std::to_string(leg_length));
+  }
+  return std::abs(leg_length - kGo1LegLength) < 1e-6 ? 1.0 : leg_length / kGo1LegLength;
+}
+
+ActionRanges scaledActionRanges(double scale) {
+  ActionRanges r;
+  for (ActionParameter p : {ActionParameter::kLiftOffRadius, ActionParameter::kExplosiveDistance}) {
+    r[p].min *= scale;
+    r[p].max *= scale;
+  }
+  return r;
+}
+
 ActionRanges aliengoActionRanges() {
   ActionRanges r;
   r[ActionParameter::kLiftOffRadius] = {0.2, 0.6};

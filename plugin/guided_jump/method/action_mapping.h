@@ -77,6 +77,16 @@ struct ActionRanges {
 ActionRanges go1ActionRanges();      // == ActionRanges()
 ActionRanges aliengoActionRanges();  // Go1's with r_p in [0.2, 0.6] m (reference code's Aliengo override)
 
+// The Go1's leg length (thigh + calf, m): the robot the paper's ranges were set for.
+constexpr double kGo1LegLength = 0.426;
+// Length ratio of a robot to the Go1 for the defaults that are lengths: leg_length /
+// kGo1LegLength, exactly 1 for a leg within a micrometre of the Go1's (so that the
+// Go1 keeps the paper's numbers to the last bit). Throws std::invalid_argument for a
+// leg length that is not finite and > 0.
+double lengthScaleToGo1(double leg_length);
+// The paper's Go1 ranges with the length-valued ones (r_p, d) multiplied by `scale`.
+ActionRanges scaledActionRanges(double scale);
+
 // The physical action, SI units.
 struct JumpAction {
   double thrust_duration_s = 0.0;       // T_th

@@ -48,6 +48,9 @@
  *   1.4  prior_action may return PRONK_REJECTED after writing its best try: the
  *        environment expects act() to refuse that action (a plugin returns it only
  *        when it negotiated 1.4 or later).
+ *   1.5  pronk_param_decl::platform_default: a parameter whose value, when the scenario
+ *        leaves it out, is the platform's (its stance, its joint gains), so that a
+ *        robot is described once, in its platform file.
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -62,7 +65,7 @@ extern "C" {
 #endif
 
 #define PRONK_ABI_MAJOR 1u
-#define PRONK_ABI_MINOR 4u
+#define PRONK_ABI_MINOR 5u
 #define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
 #define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
 #define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
@@ -112,6 +115,13 @@ typedef struct pronk_param_decl {
   const char* default_value; /* text form; NULL when required */
   const char* unit;          /* "m", "N m/rad", "" ... */
   const char* description;   /* one line */
+  /* 1.5: NULL, or the platform property a host fills in when the scenario does not set
+     the parameter, in place of default_value (which a host before 1.5 uses):
+       "stance"  the platform's standing joint positions of one leg, hip outwards
+                 (<initial stance>), as a VECTOR;
+       "kp", "kd" the platform's joint gains (<joints>), as a REAL.
+     A platform that does not give the property leaves default_value in place. */
+  const char* platform_default;
 } pronk_param_decl;
 
 /* A parameter value as written in the scenario (already checked by the host).
