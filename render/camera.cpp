@@ -32,7 +32,7 @@ Eigen::Matrix4d perspective(double fovy_deg, double aspect, double near_m, doubl
 }
 
 Camera frameJump(const std::string& mode, const Eigen::Vector3d& start, const Eigen::Vector3d& goal, double height,
-                 double fovy_deg, double aspect, const Eigen::Vector3d& follow_point) {
+                 double fovy_deg, double aspect, const Eigen::Vector3d& follow_point, double heading) {
   Camera c;
   c.fovy_deg = fovy_deg;
   Eigen::Vector3d along = goal - start;
@@ -55,8 +55,14 @@ Camera frameJump(const std::string& mode, const Eigen::Vector3d& start, const Ei
     c.target = follow_point;
     c.eye = follow_point - 1.6 * along - 1.2 * side + Eigen::Vector3d(0, 0, 0.7);
   } else {  // side view, perpendicular to the jump plane, slightly from above
+    // Turned towards the trunk's flank by |sin| of the jump's angle to the
+    // heading (0 for a forward jump, the whole turn for a lateral one), the
+    // camera moving back along the jump.
+    const double across = std::abs(std::sin(std::atan2(along.y(), along.x()) - heading));
+    const double turn = kSideViewTurnDeg * M_PI / 180.0 * across;
+    const Eigen::Vector3d view = std::cos(turn) * -side - std::sin(turn) * along;
     c.target = middle;
-    c.eye = middle - distance * side + Eigen::Vector3d(0, 0, 0.25 * distance);
+    c.eye = middle + distance * view + Eigen::Vector3d(0, 0, 0.25 * distance);
   }
   return c;
 }

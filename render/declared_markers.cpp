@@ -44,9 +44,11 @@ void addDeclaredMarkers(SceneMarkers& markers, const Trace& trace, const Environ
         const double t = duration * i / kArcPoints;
         markers.planned_arc.push_back(origin + heading * (p + vel * t) + 0.5 * gravity * t * t);
       }
+      if (!m.label.empty()) markers.arc_label = m.label;
       arc_done = true;
     } else if (m.kind == MarkerSpec::Kind::Point && !point_done) {
       markers.predicted_landing = origin + heading * Eigen::Vector3d((*v)[0], (*v)[1], (*v)[2]);
+      if (!m.label.empty()) markers.landing_label = m.label;
       point_done = true;
     }
   }

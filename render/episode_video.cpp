@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <ostream>
+#include <string>
 
 #include "pronk/error.h"
 #include "render/text_overlay.h"
@@ -19,6 +21,62 @@ Eigen::Vector3d phaseColour(const std::string& phase) {
   if (phase == "flight") return {0.2, 0.55, 0.95};
   if (phase == "landing") return {0.2, 0.75, 0.3};
   return {0.55, 0.55, 0.55};
+}
+
+constexpr double kCardSeconds = 0.8;  // of video: the title card before each target but the first
+const Eigen::Vector3d kTextColour{0.1, 0.1, 0.12};
+const Eigen::Vector3d kErrorColour{0.6, 0.05, 0.05};
+
+// "slow motion 0.25x", "2x", "" at real time.
+std::string speedText(double speed) {
+  if (speed == 1) return "";
+  char text[48];
+  std::snprintf(text, sizeof text, speed < 1 ? "slow motion %gx" : "%gx speed", speed);
+  return text;
+}
+
+// "target (0.40, 0.00, 0.00) m, yaw 45 deg" in the world frame, "" without a target.
+std::string targetText(const SceneMarkers& markers) {
+  if (!markers.target) return "";
+  char text[96];
+  std::snprintf(text, sizeof text, "target (%.2f, %.2f, %.2f) m, yaw %.0f deg", markers.target->x(),
+                markers.target->y(), markers.target->z(), markers.target_yaw * 180.0 / M_PI);
+  return text;
+}
+
+// A legend of what the scene's markers mean, right-aligned above `bottom`.
+void drawLegend(std::vector<uint8_t>& rgba, int width, int height, TextOverlay& small, const SceneMarkers& markers,
+                int bottom, int pad) {
+  struct Entry {
+    std::string label;
+    Eigen::Vector3d colour;
+    bool line;  // a line swatch (the arc), else a square (a point)
+  };
+  std::vector<Entry> entries;
+  if (markers.target) entries.push_back({"target", kTargetColour, false});
+  if (!markers.planned_arc.empty()) entries.push_back({markers.arc_label, kArcColour, true});
+  if (markers.predicted_landing) entries.push_back({markers.landing_label, kArcColour, false});
+  if (entries.empty()) return;
+  int text_w = 0;
+  for (const Entry& e : entries) text_w = std::max(text_w, small.measure(e.label));
+  const int line_h = small.lineHeight() + pad / 3, swatch = small.lineHeight() * 2 / 3;
+  const int box_w = text_w + swatch + 3 * pad, box_h = int(entries.size()) * line_h + pad;
+  const int x = width - pad - box_w, y = bottom - box_h;
+  fillRect(rgba, width, height, x, y, box_w, box_h, {1, 1, 1}, 0.6);
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const int row = y + pad / 2 + int(i) * line_h, mid = row + small.lineHeight() / 2;
+    if (entries[i].line) {
+      fillRect(rgba, width, height, x + pad, mid - 1, swatch, 3, entries[i].colour);
+    } else {
+      fillRect(rgba, width, height, x + pad, mid - swatch / 2, swatch, swatch, entries[i].colour);
+    }
+    small.draw(rgba, width, height, x + 2 * pad + swatch, row, entries[i].label, kTextColour);
+  }
+}
+
+// The trunk's yaw of a (w, x, y, z) quaternion, rad.
+double headingOf(const Eigen::Vector4d& q) {
+  return std::atan2(2.0 * (q(0) * q(3) + q(1) * q(2)), 1.0 - 2.0 * (q(2) * q(2) + q(3) * q(3)));
 }
 
 // The last sample at or before time t.
@@ -44,12 +102,25 @@ std::vector<PhaseSpan> phasesOf(const Trace& trace) {
       touchdown = &e;
       break;
     }
-  // A controller that names its thrust start (phase:thrust) stood before it.
+  // The thrust starts at the controller's phase:thrust; a controller that names
+  // other phases (the host's hop: stand, crouch, push) at its first one after
+  // standing. A trace without phase events (a replay without its jump's record)
+  // cannot tell standing from pushing: before lift-off it is "ground".
   const TraceEvent* thrust = trace.findEvent("phase:thrust");
-  const double thrust_start = thrust && thrust->time < lift_off->time ? thrust->time : 0.0;
+  bool named = false;
+  for (const TraceEvent& e : trace.events) {
+    if (e.name.rfind("phase:", 0) != 0) continue;
+    named = true;
+    if (!thrust && e.name != "phase:stand" && e.name != "phase:hold" && e.time < lift_off->time) thrust = &e;
+  }
   std::vector<PhaseSpan> spans;
-  if (thrust_start > 0) spans.push_back({"stance", 0, thrust_start});
-  spans.push_back({"thrust", thrust_start, lift_off->time});
+  if (!named) {
+    spans.push_back({"ground", 0, lift_off->time});
+  } else {
+    const double thrust_start = thrust && thrust->time < lift_off->time ? thrust->time : 0.0;
+    if (thrust_start > 0) spans.push_back({"stance", 0, thrust_start});
+    spans.push_back({"thrust", thrust_start, lift_off->time});
+  }
   if (!touchdown) {
     spans.push_back({"flight", lift_off->time, end});
   } else {
@@ -63,7 +134,7 @@ struct EpisodeVideo::Impl {
   VideoOptions options;
   std::ostream* progress;
   VideoEncoder encoder;
-  TextOverlay big, small;
+  TextOverlay big, medium, small;
   VideoSummary summary;
   std::chrono::steady_clock::time_point start_wall = std::chrono::steady_clock::now();
   int episodes = 0;
@@ -72,6 +143,7 @@ struct EpisodeVideo::Impl {
         progress(p),
         encoder(o.path, o.width, o.height, o.fps),
         big(std::max(12, o.height / 20), true),
+        medium(std::max(11, o.height / 28), true),
         small(std::max(10, o.height / 36)) {
     summary.path = o.path;
   }
@@ -109,40 +181,75 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
   for (const TraceSample& s : trace.samples) apex = std::max(apex, s.base_position.z() - std::min(start.z(), goal.z()));
   const double aspect = double(options.width) / options.height;
 
+  // The landing's figures, held on screen from touchdown to the end.
+  std::optional<double> shown_error = markers.landing_error;
+  if (!shown_error && markers.target) shown_error = (trace.samples.back().com_position - *markers.target).head<2>().norm();
+  double landed_from = sim_duration;  // no touchdown: the last frame only
+  for (const PhaseSpan& p : phases)
+    if (p.name == "landing") landed_from = p.begin;
+  std::string landing_text;
+  if (markers.target && shown_error) {
+    char text[96];
+    if (markers.landing_yaw_error) {
+      std::snprintf(text, sizeof text, "landing error %.1f cm, yaw %.1f deg", 100 * *shown_error,
+                    *markers.landing_yaw_error * 180.0 / M_PI);
+    } else {
+      std::snprintf(text, sizeof text, "landing error %.1f cm", 100 * *shown_error);
+    }
+    landing_text = text;
+  }
+  const std::string speed = speedText(options.speed), target = targetText(markers);
+  const int pad = options.height / 40;
+
   std::vector<uint8_t> rgba;
   auto last_report = start_wall;
-  for (int i = 0; i < frames; ++i) {
-    const double t = std::min(sim_duration, i / options.fps * options.speed);
-    const TraceSample& s = sampleAt(trace, t);
-    Camera camera;
+  auto cameraAt = [&](const TraceSample& s) {
     if (options.camera == "fixed") {
+      Camera camera;
       camera.eye = options.camera_position;
       camera.target = options.camera_look_at;
       camera.fovy_deg = options.fovy_deg;
-    } else {
-      camera = frameJump(options.camera, Eigen::Vector3d(start.x(), start.y(), 0), Eigen::Vector3d(goal.x(), goal.y(), 0),
-                         apex, options.fovy_deg, aspect, s.base_position);
+      return camera;
     }
-    FrameState frame{s.body_poses, s.foot_position, s.foot_in_contact};
-    renderer.render(camera, markers, frame, rgba);
+    return frameJump(options.camera, Eigen::Vector3d(start.x(), start.y(), 0), Eigen::Vector3d(goal.x(), goal.y(), 0),
+                     apex, options.fovy_deg, aspect, s.base_position, headingOf(trace.samples.front().base_quaternion));
+  };
 
-    // Overlay: phase badge, time, title, timeline, and the landing error at the end.
+  // Between targets: a title card over the next jump's first frame.
+  if (!first_episode) {
+    const TraceSample& s = trace.samples.front();
+    renderer.render(cameraAt(s), markers, FrameState{s.body_poses, s.foot_position, s.foot_in_contact}, rgba);
+    fillRect(rgba, options.width, options.height, 0, 0, options.width, options.height, {0.08, 0.09, 0.11}, 0.72);
+    const std::string heading = title.empty() ? "next jump" : title;
+    big.draw(rgba, options.width, options.height, options.width / 2 - big.measure(heading) / 2,
+             options.height / 2 - big.lineHeight(), heading, {1, 1, 1});
+    small.draw(rgba, options.width, options.height, options.width / 2 - small.measure(target) / 2,
+               options.height / 2 + pad, target, {1, 0.75, 0.7});
+    const int card_frames = std::max(1, int(std::lround(kCardSeconds * options.fps)));
+    for (int k = 0; k < card_frames; ++k) encoder.addFrame(rgba);
+  }
+
+  for (int i = 0; i < frames; ++i) {
+    const double t = std::min(sim_duration, i / options.fps * options.speed);
+    const TraceSample& s = sampleAt(trace, t);
+    FrameState frame{s.body_poses, s.foot_position, s.foot_in_contact};
+    renderer.render(cameraAt(s), markers, frame, rgba);
+
+    // Overlay: phase badge, time, speed and title, the target, the timeline,
+    // the legend, and from touchdown on the landing error.
     std::string phase = phases.front().name;
     for (const PhaseSpan& p : phases)
       if (t >= p.begin - 1e-9) phase = p.name;
-    const int pad = options.height / 40;
     const int badge_w = big.measure(phase) + 2 * pad;
     fillRect(rgba, options.width, options.height, pad, pad, badge_w, big.lineHeight() + pad, phaseColour(phase), 0.9);
     big.draw(rgba, options.width, options.height, 2 * pad, pad + pad / 3, phase, {1, 1, 1});
-    char text[160];
-    std::snprintf(text, sizeof text, "t = %.3f s%s%s%s", t, options.speed != 1 ? "   (slow motion)" : "",
+    char text[200];
+    std::snprintf(text, sizeof text, "t = %.3f s%s%s%s%s", t, speed.empty() ? "" : "   ", speed.c_str(),
                   title.empty() ? "" : "   ", title.c_str());
-    small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2, text, {0.1, 0.1, 0.12});
-    if (markers.target) {
-      std::snprintf(text, sizeof text, "target (%.2f, %.2f, %.2f) m", markers.target->x(), markers.target->y(),
-                    markers.target->z());
-      small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2 + small.lineHeight() + 4, text,
-                 {0.6, 0.05, 0.05});
+    small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2, text, kTextColour);
+    if (!target.empty()) {
+      small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2 + small.lineHeight() + 4, target,
+                 kErrorColour);
     }
     const int bar_y = options.height - 3 * pad, bar_h = pad, bar_x = 2 * pad, bar_w = options.width - 4 * pad;
     for (const PhaseSpan& p : phases) {
@@ -151,17 +258,15 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
     }
     const int cursor = bar_x + int(bar_w * t / sim_duration);
     fillRect(rgba, options.width, options.height, cursor - 1, bar_y - pad / 2, 3, bar_h + pad, {0.05, 0.05, 0.05});
-    if (markers.target && i == frames - 1) {
-      double error = 0;
-      if (markers.landing_error) {
-        error = *markers.landing_error;
-      } else {
-        error = (trace.samples.back().com_position - *markers.target).head<2>().norm();
-      }
-      std::snprintf(text, sizeof text, "landing error %.1f cm", 100 * error);
-      big.draw(rgba, options.width, options.height, options.width / 2 - big.measure(text) / 2, options.height / 2 -
-                                                                                                   big.lineHeight(),
-               text, {0.6, 0.05, 0.05});
+    drawLegend(rgba, options.width, options.height, small, markers, bar_y - pad, pad);
+    if (!landing_text.empty() && (t >= landed_from - 1e-9 || i == frames - 1)) {
+      // Below the header, right-aligned: clear of the text and, in the side and
+      // follow views, of the robot.
+      TextOverlay& medium = impl_->medium;
+      const int w = medium.measure(landing_text) + 2 * pad, x = options.width - pad - w;
+      const int y = 2 * pad + big.lineHeight() + pad;
+      fillRect(rgba, options.width, options.height, x, y, w, medium.lineHeight() + pad, {1, 1, 1}, 0.75);
+      medium.draw(rgba, options.width, options.height, x + pad, y + pad / 3, landing_text, kErrorColour);
     }
     encoder.addFrame(rgba);
     for (double still : options.stills) {

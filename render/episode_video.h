@@ -39,7 +39,7 @@ struct VideoSummary {
 
 // The phase at time t from the trace's lift_off / touchdown events.
 struct PhaseSpan {
-  std::string name;            // "stance", "thrust", "flight", "landing"
+  std::string name;            // "stance", "thrust", "flight", "landing"; "ground" when no phase is named
   double begin = 0, end = 0;
 };
 std::vector<PhaseSpan> phasesOf(const Trace& trace);

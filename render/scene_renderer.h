@@ -29,7 +29,10 @@ struct SceneMarkers {
   double target_yaw = 0;                        // rad
   std::vector<Eigen::Vector3d> planned_arc;     // polyline, world
   std::optional<Eigen::Vector3d> predicted_landing;
-  std::optional<double> landing_error;          // m, shown at the end (default: CoM to target, horizontal)
+  std::string arc_label = "planned flight", landing_label = "predicted landing";  // the video's legend
+  // Shown from touchdown to the end (default: CoM to target, horizontal, at the end).
+  std::optional<double> landing_error;          // m
+  std::optional<double> landing_yaw_error;      // rad
 };
 
 // Colours the tests look for.
@@ -60,6 +63,8 @@ class SceneRenderer {
   };
   void drawMesh(const TriangleMesh& mesh, const Eigen::Affine3d& pose, const Eigen::Vector4d& rgba);
   void drawGround(const Eigen::Vector3d& centre);
+  // The robot's soft blob shadows from the sun on flat ground (none with step platforms).
+  void drawShadow(const FrameState& frame);
 
   OffscreenGl gl_;
   const RobotDescription& robot_;

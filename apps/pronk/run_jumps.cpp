@@ -36,26 +36,6 @@ bool isRunFile(const fs::path& p) {
 
 constexpr double kResultsEvery = 10.0;  // s between rewrites of the results files during a run
 
-// The world-frame target marker, planned arc and predicted landing of a jump for the video.
-render::SceneMarkers jumpMarkers(const EpisodeRecord& r, const Landing& landing, const Terrain& terrain,
-                                const Eigen::Vector3d& gravity, const EnvironmentSchema& schema) {
-  render::SceneMarkers m;
-  const Trace& trace = r.result.episode.trace;
-  const TraceSample& s0 = trace.samples.front();
-  const double yaw0 = yawOf(s0.base_quaternion);
-  const Eigen::AngleAxisd heading(yaw0, Eigen::Vector3d::UnitZ());
-  const TargetSpec& t = r.episode.target;
-  const auto ground = terrain.topAt(s0.base_position.x(), s0.base_position.y());
-  const double surface = ground ? ground->height : 0.0;
-  // The target marks where the trunk should come to rest, on the landing surface.
-  const Eigen::Vector3d trunk_ground(s0.base_position.x(), s0.base_position.y(), surface);
-  m.target = trunk_ground + heading * Eigen::Vector3d(t.x, t.y, t.z);
-  m.target_yaw = yaw0 + t.yaw;
-  m.landing_error = landing.error_xy;
-  render::addDeclaredMarkers(m, trace, schema, terrain, gravity);
-  return m;
-}
-
 // --duration sets the episode length, which the environment's `duration`
 // parameter owns in a jump run (resolveParams refuses it, naming the flag, for
 // an environment without one or a value out of its range).
@@ -180,7 +160,8 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     if (!video.path.empty() && !trace.samples.empty()) {
       const Scenario s = applyCase(scenario, r.episode);  // it ran, so it applies
       const Terrain terrain(s.ground, s.ground_height, s.terrain);
-      const render::SceneMarkers markers = jumpMarkers(r, outcome.landing, terrain, gravity, schema);
+      const render::SceneMarkers markers = jumpMarkers(trace, r.episode.target, outcome.landing.error_xy,
+                                                      outcome.landing.error_yaw, terrain, gravity, &schema);
       if (options.video_per_jump) {
         render::VideoOptions one = video;
         char suffix[32];

@@ -2,9 +2,13 @@
 #include "video_settings.h"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+
+#include "pronk/landing.h"
+#include "render/declared_markers.h"
 
 namespace pronk::cli {
 
@@ -64,6 +68,25 @@ void checkWritable(const std::string& path) {
   if (!probe) throw Error(path + ": cannot write the video file");
   probe.close();
   if (!existed) fs::remove(path, ec);
+}
+
+render::SceneMarkers jumpMarkers(const Trace& trace, const TargetSpec& t, std::optional<double> error_xy,
+                                 std::optional<double> error_yaw, const Terrain& terrain,
+                                 const Eigen::Vector3d& gravity, const EnvironmentSchema* schema) {
+  render::SceneMarkers m;
+  const TraceSample& s0 = trace.samples.front();
+  const double yaw0 = yawOf(s0.base_quaternion);
+  const Eigen::AngleAxisd heading(yaw0, Eigen::Vector3d::UnitZ());
+  const auto ground = terrain.topAt(s0.base_position.x(), s0.base_position.y());
+  const double surface = ground ? ground->height : 0.0;
+  // The target marks where the trunk should come to rest, on the landing surface.
+  const Eigen::Vector3d trunk_ground(s0.base_position.x(), s0.base_position.y(), surface);
+  m.target = trunk_ground + heading * Eigen::Vector3d(t.x, t.y, t.z);
+  m.target_yaw = yaw0 + t.yaw;
+  if (error_xy && std::isfinite(*error_xy)) m.landing_error = error_xy;
+  if (error_yaw && std::isfinite(*error_yaw)) m.landing_yaw_error = error_yaw;
+  if (schema) render::addDeclaredMarkers(m, trace, *schema, terrain, gravity);
+  return m;
 }
 
 // The scenario's first target in the world, for the video's marker.

@@ -109,6 +109,30 @@ TEST(Cli, RenderReplaysARecordedTraceWithoutSimulating) {
   EXPECT_NE(bad.output.find(dir + "/bad.csv:3:"), std::string::npos) << bad.output;
 }
 
+// A jump's trace replays with what its run's video showed: the phases its
+// controller named and the markers its environment reported, from results.json
+// beside the trace; a damaged results.json is named, not ignored.
+TEST(Cli, RenderOfAJumpTraceTakesItsEventsAndMarkersFromItsResults) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/replay_jump";
+  std::filesystem::remove_all(dir);
+  const std::string scenario = source("scenarios/go1/forward.xml");
+  ASSERT_EQ(pronk("run " + scenario + " --policy ballistic --trace --out " + dir).status, 0);
+  const std::string render = "render " + scenario + " -o " + dir + "/replay.mp4 --size 320x240 --fps 10 --trace ";
+  const Outcome o = pronk(render + dir + "/jump-000.csv");
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("its jump's events and markers from results.json beside it"), std::string::npos) << o.output;
+  // Elsewhere, without its results: the contacts alone.
+  std::filesystem::create_directories(dir + "/alone");
+  std::filesystem::copy_file(dir + "/jump-000.csv", dir + "/alone/jump-000.csv");
+  const Outcome alone = pronk(render + dir + "/alone/jump-000.csv");
+  ASSERT_EQ(alone.status, 0) << alone.output;
+  EXPECT_NE(alone.output.find("phases from the foot contacts alone"), std::string::npos) << alone.output;
+  std::ofstream(dir + "/results.json") << "{\"jumps\": [{\"trace\": \"jump-000.csv\"}]}";
+  const Outcome damaged = pronk(render + dir + "/jump-000.csv");
+  EXPECT_EQ(damaged.status, 3) << damaged.output;
+  EXPECT_NE(damaged.output.find(dir + "/results.json"), std::string::npos) << damaged.output;
+}
+
 TEST(Cli, NonFootContactFailsTheRunWithStatus4) {
   const auto j = runAndRead(cliScenario("go1_fall.xml"), "go1_fall", 4);
   EXPECT_TRUE(j.at("failed").get<bool>());

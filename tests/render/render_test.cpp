@@ -195,13 +195,67 @@ TEST(Render, PhasesComeFromLiftOffAndTouchdown) {
   EXPECT_EQ(phasesOf(t).size(), 1u);
   t.addEvent(0.6, "lift_off");
   t.addEvent(0.9, "touchdown");
-  const auto p = phasesOf(t);
+  // No controller phases (a replay of a bare trace): standing and pushing are one span.
+  auto p = phasesOf(t);
   ASSERT_EQ(p.size(), 3u);
-  EXPECT_EQ(p[0].name, "thrust");
+  EXPECT_EQ(p[0].name, "ground");
   EXPECT_EQ(p[1].name, "flight");
   EXPECT_DOUBLE_EQ(p[1].begin, 0.6);
   EXPECT_EQ(p[2].name, "landing");
   EXPECT_DOUBLE_EQ(p[2].end, 1.5);
+  // The jump controller's thrust start, or another controller's first phase after standing.
+  Trace jump = t;
+  jump.addEvent(0.0, "phase:hold");
+  jump.addEvent(0.2, "phase:thrust");
+  p = phasesOf(jump);
+  ASSERT_EQ(p.size(), 4u);
+  EXPECT_EQ(p[0].name, "stance");
+  EXPECT_EQ(p[1].name, "thrust");
+  EXPECT_DOUBLE_EQ(p[1].begin, 0.2);
+  Trace hop = t;
+  hop.addEvent(0.0, "phase:stand");
+  hop.addEvent(0.3, "phase:crouch");
+  hop.addEvent(0.45, "phase:push");
+  p = phasesOf(hop);
+  ASSERT_EQ(p.size(), 4u);
+  EXPECT_EQ(p[1].name, "thrust");
+  EXPECT_DOUBLE_EQ(p[1].begin, 0.3);
+}
+
+// A multi-target video: a title card of kCardSeconds between the jumps, none before the first.
+TEST(Render, AVideoOfSeveralJumpsHasATitleCardBetweenThem) {
+  Episode e(0.2);
+  VideoOptions options;
+  options.path = outDir() + "/two_jumps.mp4";
+  options.width = 320;
+  options.height = 240;
+  options.fps = 30;
+  SceneMarkers markers;
+  markers.target = Eigen::Vector3d(0.4, 0, 0);
+  EpisodeVideo video(options, nullptr);
+  video.add(e.trace, e.robot, e.terrain, markers, "first");
+  video.add(e.trace, e.robot, e.terrain, markers, "second");
+  const VideoSummary summary = video.finish();
+  EXPECT_EQ(summary.frames, 6 + 24 + 6);  // 0.2 s at 30 fps, twice, and a 0.8 s card
+  EXPECT_EQ(probeVideo(options.path).frames, summary.frames);
+}
+
+// The side view of a lateral jump turns towards the trunk's flank; a forward jump's does not.
+TEST(Render, TheSideViewOfASidewaysJumpTurnsTowardsTheFlank) {
+  const Eigen::Vector3d start(0, 0, 0);
+  auto viewOf = [&](const Eigen::Vector3d& goal, double heading) {
+    const Camera c = frameJump("side", start, goal, 0.3, 45, 16.0 / 9, start, heading);
+    Eigen::Vector3d d = c.target - c.eye;
+    d.z() = 0;
+    return d.normalized();
+  };
+  // Forward: looking straight across the jump (+y), perpendicular to it.
+  EXPECT_NEAR(viewOf({0.6, 0, 0}, 0.0).dot(Eigen::Vector3d::UnitX()), 0.0, 1e-12);
+  // Lateral (+y) with the trunk along x: still mostly across the jump, turned by the full angle.
+  const Eigen::Vector3d lateral = viewOf({0, 0.5, 0}, 0.0);
+  EXPECT_NEAR(std::acos(std::abs(lateral.dot(Eigen::Vector3d::UnitX()))) * 180.0 / M_PI, kSideViewTurnDeg, 1e-9);
+  // The same lateral jump by a robot facing +y is a forward jump for it: no turn.
+  EXPECT_NEAR(viewOf({0, 0.5, 0}, M_PI / 2).dot(Eigen::Vector3d::UnitY()), 0.0, 1e-12);
 }
 
 }  // namespace
