@@ -27,6 +27,14 @@ constexpr double kCardSeconds = 0.8;  // of video: the title card before each ta
 const Eigen::Vector3d kTextColour{0.1, 0.1, 0.12};
 const Eigen::Vector3d kErrorColour{0.6, 0.05, 0.05};
 
+// printf into a string (short texts of the overlay).
+template <class... Args>
+std::string printed(const char* format, Args... args) {
+  char text[160];
+  std::snprintf(text, sizeof text, format, args...);
+  return text;
+}
+
 // "slow motion 0.25x", "2x", "" at real time.
 std::string speedText(double speed) {
   if (speed == 1) return "";
@@ -130,6 +138,29 @@ std::vector<PhaseSpan> phasesOf(const Trace& trace) {
   return spans;
 }
 
+OverlayText overlayText(const Trace& trace, const std::vector<PhaseSpan>& phases, const SceneMarkers& markers,
+                        double t, bool last, double speed, const std::string& title) {
+  OverlayText words;
+  words.phase = phases.empty() ? "" : phases.front().name;
+  double landed_from = INFINITY;  // no touchdown: the last frame only
+  for (const PhaseSpan& p : phases) {
+    if (t >= p.begin - 1e-9) words.phase = p.name;
+    if (p.name == "landing") landed_from = p.begin;
+  }
+  const std::string pace = speedText(speed);
+  words.header = printed("t = %.3f s", t) + (pace.empty() ? "" : "   " + pace) + (title.empty() ? "" : "   " + title);
+  words.target = targetText(markers);
+  std::optional<double> error = markers.landing_error;
+  if (!error && markers.target && !trace.samples.empty()) {
+    error = (trace.samples.back().com_position - *markers.target).head<2>().norm();
+  }
+  if (markers.target && error && (t >= landed_from - 1e-9 || last)) {
+    words.landing = printed("landing error %.1f cm", 100 * *error);
+    if (markers.landing_yaw_error) words.landing += printed(", yaw %.1f deg", *markers.landing_yaw_error * 180.0 / M_PI);
+  }
+  return words;
+}
+
 struct EpisodeVideo::Impl {
   VideoOptions options;
   std::ostream* progress;
@@ -181,24 +212,7 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
   for (const TraceSample& s : trace.samples) apex = std::max(apex, s.base_position.z() - std::min(start.z(), goal.z()));
   const double aspect = double(options.width) / options.height;
 
-  // The landing's figures, held on screen from touchdown to the end.
-  std::optional<double> shown_error = markers.landing_error;
-  if (!shown_error && markers.target) shown_error = (trace.samples.back().com_position - *markers.target).head<2>().norm();
-  double landed_from = sim_duration;  // no touchdown: the last frame only
-  for (const PhaseSpan& p : phases)
-    if (p.name == "landing") landed_from = p.begin;
-  std::string landing_text;
-  if (markers.target && shown_error) {
-    char text[96];
-    if (markers.landing_yaw_error) {
-      std::snprintf(text, sizeof text, "landing error %.1f cm, yaw %.1f deg", 100 * *shown_error,
-                    *markers.landing_yaw_error * 180.0 / M_PI);
-    } else {
-      std::snprintf(text, sizeof text, "landing error %.1f cm", 100 * *shown_error);
-    }
-    landing_text = text;
-  }
-  const std::string speed = speedText(options.speed), target = targetText(markers);
+  const std::string target = targetText(markers);
   const int pad = options.height / 40;
 
   std::vector<uint8_t> rgba;
@@ -237,19 +251,15 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
 
     // Overlay: phase badge, time, speed and title, the target, the timeline,
     // the legend, and from touchdown on the landing error.
-    std::string phase = phases.front().name;
-    for (const PhaseSpan& p : phases)
-      if (t >= p.begin - 1e-9) phase = p.name;
+    const OverlayText words = overlayText(trace, phases, markers, t, i == frames - 1, options.speed, title);
+    const std::string& phase = words.phase;
     const int badge_w = big.measure(phase) + 2 * pad;
     fillRect(rgba, options.width, options.height, pad, pad, badge_w, big.lineHeight() + pad, phaseColour(phase), 0.9);
     big.draw(rgba, options.width, options.height, 2 * pad, pad + pad / 3, phase, {1, 1, 1});
-    char text[200];
-    std::snprintf(text, sizeof text, "t = %.3f s%s%s%s%s", t, speed.empty() ? "" : "   ", speed.c_str(),
-                  title.empty() ? "" : "   ", title.c_str());
-    small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2, text, kTextColour);
-    if (!target.empty()) {
-      small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2 + small.lineHeight() + 4, target,
-                 kErrorColour);
+    small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2, words.header, kTextColour);
+    if (!words.target.empty()) {
+      small.draw(rgba, options.width, options.height, badge_w + 2 * pad, pad + pad / 2 + small.lineHeight() + 4,
+                 words.target, kErrorColour);
     }
     const int bar_y = options.height - 3 * pad, bar_h = pad, bar_x = 2 * pad, bar_w = options.width - 4 * pad;
     for (const PhaseSpan& p : phases) {
@@ -259,14 +269,14 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
     const int cursor = bar_x + int(bar_w * t / sim_duration);
     fillRect(rgba, options.width, options.height, cursor - 1, bar_y - pad / 2, 3, bar_h + pad, {0.05, 0.05, 0.05});
     drawLegend(rgba, options.width, options.height, small, markers, bar_y - pad, pad);
-    if (!landing_text.empty() && (t >= landed_from - 1e-9 || i == frames - 1)) {
+    if (!words.landing.empty()) {
       // Below the header, right-aligned: clear of the text and, in the side and
       // follow views, of the robot.
       TextOverlay& medium = impl_->medium;
-      const int w = medium.measure(landing_text) + 2 * pad, x = options.width - pad - w;
+      const int w = medium.measure(words.landing) + 2 * pad, x = options.width - pad - w;
       const int y = 2 * pad + big.lineHeight() + pad;
       fillRect(rgba, options.width, options.height, x, y, w, medium.lineHeight() + pad, {1, 1, 1}, 0.75);
-      medium.draw(rgba, options.width, options.height, x + pad, y + pad / 3, landing_text, kErrorColour);
+      medium.draw(rgba, options.width, options.height, x + pad, y + pad / 3, words.landing, kErrorColour);
     }
     encoder.addFrame(rgba);
     for (double still : options.stills) {

@@ -44,6 +44,18 @@ struct PhaseSpan {
 };
 std::vector<PhaseSpan> phasesOf(const Trace& trace);
 
+// The overlay's words at simulated time t of an episode (`last`: its last frame).
+struct OverlayText {
+  std::string phase;    // the badge: the phase at t
+  std::string header;   // "t = 0.512 s   slow motion 0.5x   TITLE"
+  std::string target;   // "target (0.30, 0.20, 0.00) m, yaw 45 deg"; "" without a target
+  // "landing error 1.9 cm, yaw 10.4 deg" from touchdown to the end (on the last
+  // frame when the episode never touches down); "" before, or without a target.
+  std::string landing;
+};
+OverlayText overlayText(const Trace& trace, const std::vector<PhaseSpan>& phases, const SceneMarkers& markers,
+                        double t, bool last, double speed, const std::string& title);
+
 // Several episodes one after another in one video (e.g. one jump per target).
 // Frames stream to the encoder as they are drawn.
 class EpisodeVideo {

@@ -222,6 +222,37 @@ TEST(Render, PhasesComeFromLiftOffAndTouchdown) {
   EXPECT_DOUBLE_EQ(p[1].begin, 0.3);
 }
 
+// The overlay says the speed and the target's yaw, and holds the landing error
+// from touchdown to the end (not before; at the end only for a jump that never lands).
+TEST(Render, TheOverlayHoldsTheLandingErrorFromTouchdownOn) {
+  Trace t;
+  t.samples.resize(2);
+  t.samples[1].time = 1.5;
+  t.addEvent(0.2, "phase:thrust");
+  t.addEvent(0.6, "lift_off");
+  t.addEvent(0.9, "touchdown");
+  SceneMarkers m;
+  m.target = Eigen::Vector3d(0.3, 0.2, 0);
+  m.target_yaw = M_PI / 4;
+  m.landing_error = 0.019;
+  m.landing_yaw_error = 10.4 * M_PI / 180;
+  const std::vector<PhaseSpan> phases = phasesOf(t);
+  const OverlayText flight = overlayText(t, phases, m, 0.7, false, 0.25, "diagonal");
+  EXPECT_EQ(flight.phase, "flight");
+  EXPECT_EQ(flight.header, "t = 0.700 s   slow motion 0.25x   diagonal");
+  EXPECT_EQ(flight.target, "target (0.30, 0.20, 0.00) m, yaw 45 deg");
+  EXPECT_EQ(flight.landing, "");
+  for (double time : {0.9, 1.2, 1.5}) {
+    EXPECT_EQ(overlayText(t, phases, m, time, time == 1.5, 1, "").landing, "landing error 1.9 cm, yaw 10.4 deg");
+  }
+  EXPECT_EQ(overlayText(t, phases, m, 1.2, false, 1, "").header, "t = 1.200 s");
+  Trace airborne = t;
+  airborne.events.pop_back();  // no touchdown
+  const std::vector<PhaseSpan> up = phasesOf(airborne);
+  EXPECT_EQ(overlayText(airborne, up, m, 1.2, false, 1, "").landing, "");
+  EXPECT_NE(overlayText(airborne, up, m, 1.5, true, 1, "").landing, "");
+}
+
 // A multi-target video: a title card of kCardSeconds between the jumps, none before the first.
 TEST(Render, AVideoOfSeveralJumpsHasATitleCardBetweenThem) {
   Episode e(0.2);
