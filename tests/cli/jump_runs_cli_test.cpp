@@ -104,6 +104,21 @@ TEST(JumpRuns, ARobotWithAnotherStanceAndLegLengthsJumpsFromItsDataAlone) {
   EXPECT_TRUE(j[0]["ended_standing"].get<bool>()) << r.output;
 }
 
+// The vendor's own Aliengo URDF (continuous thigh joints: no position limits)
+// jumps from its data alone; its reward used to be NaN, failing every jump.
+TEST(JumpRuns, TheVendorsAliengoJumpsFromItsOwnUrdf) {
+  if (!std::filesystem::exists(source("../shared/thirdparty/unitree/aliengo_description/urdf/aliengo.urdf"))) {
+    GTEST_SKIP() << "../shared/thirdparty is absent";
+  }
+  const std::string out = outDir("vendor_aliengo_forward");
+  const CommandRun r = pronk("run " + testScenario("vendor_aliengo_forward.xml") + " --policy ballistic --out " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(out);
+  ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
+  EXPECT_EQ(j[0]["status"], "ok") << r.output;
+  EXPECT_TRUE(std::isfinite(j[0]["reward"].get<double>())) << r.output;
+}
+
 TEST(JumpRuns, TracesAreWrittenOnlyWhenAsked) {
   const std::string out = outDir("jump_no_trace");
   const CommandRun r = pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --out " + out);

@@ -133,6 +133,23 @@ TEST(Reward, JointPositionBeyondTheSoftLimit) {
   EXPECT_NEAR(b.running_cost, 0.07 * 1e-3, 1e-12);
 }
 
+// A continuous joint (the vendor Aliengo's thighs have no position limits) adds
+// nothing and keeps the reward finite; a joint with one bound counts beyond it.
+TEST(Reward, AJointWithoutPositionLimitsAddsNothing) {
+  JointLimits limits;
+  limits.position_min = Eigen::Vector3d(-1.0, -INFINITY, -INFINITY);
+  limits.position_max = Eigen::Vector3d(1.0, INFINITY, 0.5);
+  limits.velocity_max = Eigen::Vector3d::Constant(30);
+  EXPECT_EQ(reward_terms::jointPositionExcess(Eigen::Vector3d(0, 100.0, 0.2), limits, 0.9), 0.0);
+  EXPECT_NEAR(reward_terms::jointPositionExcess(Eigen::Vector3d(0, -100.0, 0.7), limits, 0.9), 0.2, kTight);
+  JumpRecord r = feasibleRecord();
+  r.joint_limits.position_min[4] = -INFINITY;
+  r.joint_limits.position_max[4] = INFINITY;
+  const RewardBreakdown b = computeReward(r);
+  EXPECT_TRUE(std::isfinite(b.reward));
+  EXPECT_EQ(b.joint_position_limits.value, 0.0);
+}
+
 TEST(Reward, RunningTermsCountPerReferenceStepOfTime) {
   // At 1 kHz, five ticks with the same violation weigh as one 5 ms reference step.
   JumpRecord r = feasibleRecord();

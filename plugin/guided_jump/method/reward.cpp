@@ -95,8 +95,14 @@ double activation(double x, double lo, double hi) { return std::abs(std::min(x -
 double jointPositionExcess(const Eigen::VectorXd& q, const JointLimits& limits, double soft_limit_factor) {
   double sum = 0.0;
   for (Eigen::Index j = 0; j < q.size(); ++j) {
-    const double middle = 0.5 * (limits.position_min[j] + limits.position_max[j]);
-    const double half = 0.5 * (limits.position_max[j] - limits.position_min[j]) * soft_limit_factor;
+    const double lo = limits.position_min[j], hi = limits.position_max[j];
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      // A continuous joint (the vendor Aliengo's thighs), or one bound only: no
+      // soft band around a middle that does not exist; the hard bound that is there.
+      sum += activation(q[j], lo, hi);
+      continue;
+    }
+    const double middle = 0.5 * (lo + hi), half = 0.5 * (hi - lo) * soft_limit_factor;
     sum += activation(q[j], middle - half, middle + half);
   }
   return sum;
