@@ -218,6 +218,21 @@ const pronk_controller_ops kOps = {sizeof(pronk_controller_ops), nullptr, noComp
 const pronk_controller_ops kOpsWithoutCompute = {sizeof(pronk_controller_ops), nullptr, nullptr, noDestroy};
 const pronk_param_decl kBadDefault[] = {
     {sizeof(pronk_param_decl), "gain", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "7", "", ""}};
+// ABI 1.5: a platform default the host does not know, and one of the wrong type.
+const pronk_param_decl kUnknownPlatformDefault[] = {
+    {sizeof(pronk_param_decl), "gain", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "1", "", "", "mass"}};
+const pronk_param_decl kMistypedPlatformDefault[] = {
+    {sizeof(pronk_param_decl), "pose", PRONK_PARAM_REAL, 0, -1.0, 1.0, 0, "0", "", "", "stance"}};
+// An environment with two task numbers and a mirror that is not +-1.
+pronk_status noReset(void*, const double*, int32_t, uint64_t, const pronk_robot_state*, double*, char*, size_t) {
+  return PRONK_ERROR_FAILED;
+}
+pronk_status noAct(void*, const double*, char*, size_t) { return PRONK_ERROR_FAILED; }
+pronk_status noStep(void*, const pronk_robot_state*, double*, int32_t*, char*, size_t) { return PRONK_ERROR_FAILED; }
+pronk_status noFinish(void*, const pronk_robot_state*, double*, char*, size_t) { return PRONK_ERROR_FAILED; }
+const pronk_environment_ops kEnvOps = {sizeof(pronk_environment_ops), noReset, noAct, noStep, noFinish, noDestroy};
+const char* const kTwoTasks[] = {"x", "y"};
+const double kBadMirror[] = {1.0, 0.5};
 
 pronk_factory controllerNamed(const char* name) {
   return {sizeof(pronk_factory), PRONK_FACTORY_CONTROLLER, name, "", 0, nullptr, 0, 0, 0, 0.0, noCreate, &kOps, nullptr, 0, nullptr, nullptr, 0, 0, nullptr};
@@ -263,6 +278,26 @@ TEST(PluginLoading, FactoryDeclarationsAreChecked) {
   bad_default.param_count = 1;
   bad_default.params = kBadDefault;
   EXPECT_THAT(loadError(bad_default), HasSubstr("parameter 'gain' has an invalid default: 7 is out of range [0, 1]"));
+
+  pronk_factory unknown_platform = controllerNamed("unknown_platform");
+  unknown_platform.param_count = 1;
+  unknown_platform.params = kUnknownPlatformDefault;
+  EXPECT_THAT(loadError(unknown_platform), HasSubstr("defaults to the platform's 'mass', not one of stance, kp, kd"));
+  pronk_factory mistyped_platform = controllerNamed("mistyped_platform");
+  mistyped_platform.param_count = 1;
+  mistyped_platform.params = kMistypedPlatformDefault;
+  EXPECT_THAT(loadError(mistyped_platform), HasSubstr("defaults to the platform's 'stance' but is not of its type"));
+
+  pronk_factory mirror = controllerNamed("mirror");
+  mirror.kind = PRONK_FACTORY_ENVIRONMENT;
+  mirror.controller = nullptr;
+  mirror.environment = &kEnvOps;
+  mirror.observation_size = 2;
+  mirror.action_size = 1;
+  mirror.task_names = kTwoTasks;
+  mirror.task_size = 2;
+  mirror.task_mirror = kBadMirror;
+  EXPECT_THAT(loadError(mirror), HasSubstr("environment 'mirror', task_mirror[1] is 0.500000, not +1 or -1"));
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ using pronk_test::source;
 std::string here(const std::string& relative) { return std::string(PRONK_TRAINING_TEST_DIR) + "/" + relative; }
 const std::string kTinyTraining = here("scenarios/go1_tiny_train.xml");
 const std::string kTinyAimTraining = here("scenarios/go1_tiny_aim_train.xml");
+const std::string kTinyAimMirrorTraining = here("scenarios/go1_tiny_aim_mirror_train.xml");
 
 std::string outDir(const std::string& name) {
   const std::string dir = std::string(PRONK_TRAINING_OUT_DIR) + "/" + name;
@@ -231,6 +232,28 @@ TEST(PronkTrain, AimCorrectionWithHindsightResumesBitForBit) {
   EXPECT_TRUE(r.status == 0 || r.status == 4) << r.output;
   const json results = readJson(run + "/results.json")["jumps"];
   ASSERT_TRUE(results.is_array() && results.size() == 1u) << r.output;
+}
+
+// Mirror guidance: each hindsight pair enters with its mirror image (y, yaw and
+// roll, of the task and of the aim offset, negated), so pairs come in couples.
+TEST(PronkTrain, MirrorGuidanceAddsTheMirrorImageOfEveryHindsightPair) {
+  const std::string dir = outDir("train_aim_mirror");
+  const Outcome o = pronk("train " + kTinyAimMirrorTraining + " --iterations 1 --jobs 2 --out " + dir + "/p.json");
+  ASSERT_EQ(o.status, 0) << o.output;
+  const json c = readJson(dir + "/p.checkpoint.json");
+  const json& obs = c["hindsight"]["observations"];
+  const json& act = c["hindsight"]["actions"];
+  ASSERT_TRUE(obs.is_array() && act.is_array());
+  ASSERT_GT(obs.size(), 0u) << "no jump of 8 ended standing";
+  ASSERT_EQ(obs.size() % 2, 0u);
+  const std::array<double, 6> signs = {1, -1, 1, -1, -1, 1};
+  for (size_t k = 0; k < obs.size(); k += 2) {
+    for (size_t i = 0; i < 6; ++i) {
+      EXPECT_EQ(obs[k + 1][i].get<double>(), signs[i] * obs[k][i].get<double>()) << "pair " << k << ", task " << i;
+      EXPECT_EQ(act[k + 1][i].get<double>(), signs[i] * act[k][i].get<double>()) << "pair " << k << ", aim " << i;
+    }
+  }
+  EXPECT_EQ(readJson(dir + "/p.json")["provenance"]["guidance"]["mirror"], true);
 }
 
 TEST(PronkTrain, DoesNotDependOnTheNumberOfJobs) {

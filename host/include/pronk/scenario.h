@@ -217,7 +217,8 @@ struct TrainingSpec {
   // residual's last layer zero at the start); the critic fitted to the first
   // batch before the first actor update; hindsight relabelling (the actor's
   // mean fitted to the newest hindsight_samples (achieved task, action) pairs,
-  // hindsight_epochs passes per iteration); mirror symmetry (not built yet).
+  // hindsight_epochs passes per iteration); mirror symmetry (each hindsight pair of an
+  // aim correction also enters in its mirror image, by the environment's task mirror).
   bool residual = true;
   // An aim correction instead (<guidance aim="true" residual="false">): the
   // network's output offsets the observation the prior plans for.

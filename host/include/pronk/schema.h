@@ -28,6 +28,9 @@ struct EnvironmentSchema {
   std::vector<MetricSpec> metrics;     // in declaration order
   std::vector<std::string> task_names;
   std::vector<MarkerSpec> markers;
+  // ABI 1.5: the sign of each task number in the episode's mirror image across
+  // the robot's sagittal plane (task_names' order); empty: not symmetric.
+  std::vector<double> task_mirror;
 
   const MetricSpec* find(const std::string& name) const {
     for (const MetricSpec& m : metrics)

@@ -20,6 +20,7 @@ struct PluginLibrary::Factory {
   std::vector<pronk_metric_decl> metrics;  // 1.3
   std::vector<pronk_marker_decl> markers;  // 1.3
   std::vector<const char*> task_names;     // 1.3
+  std::vector<double> task_mirror;         // 1.5
   pronk_controller_ops controller{};
   pronk_environment_ops environment{};
 };
@@ -201,9 +202,20 @@ void readDeclarations(const Checker& check, PluginLibrary::Factory& out, const s
     if (!validName(f.task_names[i])) check.fail(who + ", task name #" + std::to_string(i) + " " + quoted(f.task_names[i]) + " is not [a-z0-9_]+");
     out.task_names.push_back(f.task_names[i]);
   }
+  if (f.task_mirror) {  // 1.5
+    if (f.task_size <= 0) check.fail(who + " declares a task mirror but no task names (task_size)");
+    for (int32_t i = 0; i < f.task_size; ++i) {
+      if (f.task_mirror[i] != 1.0 && f.task_mirror[i] != -1.0) {
+        check.fail(who + ", task_mirror[" + std::to_string(i) + "] is " + std::to_string(f.task_mirror[i]) +
+                   ", not +1 or -1");
+      }
+      out.task_mirror.push_back(f.task_mirror[i]);
+    }
+  }
   f.metrics = out.metrics.empty() ? nullptr : out.metrics.data();
   f.markers = out.markers.empty() ? nullptr : out.markers.data();
   f.task_names = out.task_names.empty() ? nullptr : out.task_names.data();
+  f.task_mirror = out.task_mirror.empty() ? nullptr : out.task_mirror.data();
 }
 
 std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const pronk_factory* raw, int32_t index,
@@ -221,6 +233,7 @@ std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const 
     f.task_names = nullptr;
     f.markers = nullptr;
   }
+  if (PRONK_ABI_VERSION_MINOR(abi_version) < 5) f.task_mirror = nullptr;  // 1.5's
   if (!validName(f.name)) check.fail(slot + " is named " + quoted(f.name) + ", not [a-z0-9_]+");
   if (f.kind != PRONK_FACTORY_CONTROLLER && f.kind != PRONK_FACTORY_ENVIRONMENT) {
     check.fail(slot + " ('" + f.name + "') has unknown kind " + std::to_string(f.kind));
@@ -280,6 +293,7 @@ EnvironmentSchema environmentSchema(const pronk_factory& f) {
     schema.metrics.push_back(std::move(m));
   }
   for (int32_t i = 0; i < f.task_size; ++i) schema.task_names.push_back(f.task_names[i]);
+  if (f.task_mirror) schema.task_mirror.assign(f.task_mirror, f.task_mirror + f.task_size);
   for (int32_t i = 0; i < f.marker_count; ++i) {
     const pronk_marker_decl& d = f.markers[i];
     MarkerSpec m;

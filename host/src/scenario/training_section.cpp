@@ -107,7 +107,10 @@ void readGuidance(const XMLElement& e, const SourceFile& file, TrainingSpec& t) 
     r.fail("aim=\"true\" and residual=\"true\": the policy is either an aim correction of the prior or a "
            "residual over it; write residual=\"false\" with aim=\"true\"");
   }
-  if (t.mirror) r.fail("mirror=\"true\": mirror symmetry is not built yet; write mirror=\"false\"");
+  if (t.mirror && !(t.aim && t.hindsight)) {
+    r.fail("mirror=\"true\" adds the mirror image of each hindsight pair of an aim correction: it needs "
+           "aim=\"true\" and hindsight=\"true\"");
+  }
 }
 
 }  // namespace

@@ -210,6 +210,15 @@ class Trainer {
     observation_size_ = setup.factory->observation_size;
     // The network's outputs: an offset of the observation for an aim correction.
     action_size_ = spec_.aim ? observation_size_ : setup.factory->action_size;
+    if (spec_.mirror) {
+      // The mirror image of an aim pair is the pair with every task number (and its
+      // offset) times the environment's mirror signs: both live in task space.
+      if (static_cast<int>(setup.schema.task_mirror.size()) != observation_size_) {
+        throw InputError(spec_.where, "<training>: mirror=\"true\", but environment '" + factory_name_ +
+                                          "' declares no task mirror (plugin ABI 1.5 pronk_factory::task_mirror)");
+      }
+      mirror_ = Eigen::Map<const Eigen::VectorXd>(setup.schema.task_mirror.data(), observation_size_);
+    }
     state_ = std::make_shared<PolicyState>();
     state_->residual = spec_.residual;
     state_->aim = spec_.aim;
@@ -427,6 +436,14 @@ class Trainer {
         if (target.size() != action_size_) continue;
         hindsight_.add(tasks[j], target);
         ++added;
+        if (spec_.mirror) {
+          // The same jump seen in the mirror: it lands at the mirrored task by
+          // aiming at the mirrored aim (the robot is left-right symmetric).
+          std::vector<double> mirrored = tasks[j];
+          for (size_t i = 0; i < mirrored.size(); ++i) mirrored[i] *= mirror_[static_cast<Eigen::Index>(i)];
+          hindsight_.add(mirrored, mirror_.cwiseProduct(target));
+          ++added;
+        }
         continue;
       }
       const std::vector<double>& a = taken[cases[j]];
@@ -600,6 +617,7 @@ class Trainer {
   Rng target_rng_, noise_rng_;
   std::vector<EpisodeCase> validation_;
   hindsight::Buffer hindsight_;
+  Eigen::VectorXd mirror_;  // the task's signs in the mirror image (mirror guidance)
   std::string factory_name_, origin_;
   int observation_size_ = 0, action_size_ = 0;
   std::shared_ptr<PolicyState> state_;

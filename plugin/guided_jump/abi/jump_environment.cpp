@@ -651,6 +651,8 @@ const MetricTable& metricTable() {
 }
 
 const char* const kTaskNames[kObservationSize] = {"x", "y", "z", "yaw", "roll", "pitch"};
+// The mirror image across the start's x-z plane: y, yaw and roll change sign.
+const double kTaskMirror[kObservationSize] = {1, -1, 1, -1, -1, 1};
 
 const pronk_marker_decl kMarkers[] = {
     {sizeof(pronk_marker_decl), PRONK_MARKER_ARC, "planned flight",
@@ -686,6 +688,7 @@ const pronk_factory* jumpEnvironmentFactory() {
       kObservationSize,
       static_cast<int32_t>(std::size(kMarkers)),
       kMarkers,
+      kTaskMirror,
   };
   return &factory;
 }

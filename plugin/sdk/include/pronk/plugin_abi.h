@@ -50,7 +50,9 @@
  *        when it negotiated 1.4 or later).
  *   1.5  pronk_param_decl::platform_default: a parameter whose value, when the scenario
  *        leaves it out, is the platform's (its stance, its joint gains), so that a
- *        robot is described once, in its platform file.
+ *        robot is described once, in its platform file. pronk_factory::task_mirror:
+ *        an environment whose task is symmetric under the mirror across the robot's
+ *        sagittal plane says how each task number changes sign.
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -304,6 +306,13 @@ typedef struct pronk_factory {
   int32_t task_size;                 /* entries of task_names */
   int32_t marker_count;
   const pronk_marker_decl* markers;  /* marker_count entries, each with its own struct_size */
+  /* 1.5, environments (optional, NULL: none). task_size numbers, each +1 or -1: the
+     task of the mirror image of an episode across the robot's start x-z plane is the
+     task times these (the jump: x, z and pitch keep their sign, y, yaw and roll
+     change it). A learner may then add each example's mirror image (pronk train's
+     mirror guidance). Declaring it says the environment, its controller and the
+     robots it is meant for are left-right symmetric. */
+  const double* task_mirror;
 } pronk_factory;
 
 /* Zeroed by the host, which sets struct_size; filled by the plugin, which writes only
