@@ -5,6 +5,7 @@
 // file:line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 #include "pronk_command.h"  // tests/cli: running pronk as a user does
 
@@ -28,6 +30,7 @@ std::string here(const std::string& relative) { return std::string(PRONK_TRAININ
 const std::string kTinyTraining = here("scenarios/go1_tiny_train.xml");
 const std::string kTinyAimTraining = here("scenarios/go1_tiny_aim_train.xml");
 const std::string kTinyAimMirrorTraining = here("scenarios/go1_tiny_aim_mirror_train.xml");
+const std::string kTinyOversampleTraining = here("scenarios/go1_tiny_oversample_train.xml");
 
 std::string outDir(const std::string& name) {
   const std::string dir = std::string(PRONK_TRAINING_OUT_DIR) + "/" + name;
@@ -254,6 +257,53 @@ TEST(PronkTrain, MirrorGuidanceAddsTheMirrorImageOfEveryHindsightPair) {
     }
   }
   EXPECT_EQ(readJson(dir + "/p.json")["provenance"]["guidance"]["mirror"], true);
+}
+
+// Oversampling: the targets that failed or were refused come back in later
+// batches (half of each here), kept in the checkpoint so that a resumed run
+// draws the same ones.
+TEST(PronkTrain, OversamplingDrawsFailedAndRefusedTargetsAgain) {
+  const std::string whole = outDir("train_oversample_whole"), split = outDir("train_oversample_split");
+  const Outcome a = pronk("train " + kTinyOversampleTraining + " --iterations 3 --jobs 2 --out " + whole + "/p.json");
+  ASSERT_EQ(a.status, 0) << a.output;
+  const json c = readJson(whole + "/p.checkpoint.json");
+  const json& hard = c["hard_targets"];
+  ASSERT_TRUE(hard.is_array()) << c.dump().substr(0, 300);
+  ASSERT_GT(hard.size(), 0u) << "no target of the far region was refused or failed";
+  EXPECT_LE(hard.size(), 8u);
+  for (const json& t : hard) {
+    ASSERT_EQ(t.size(), 4u);
+    EXPECT_GE(t[0].get<double>(), 0.8);
+    EXPECT_LE(t[0].get<double>(), 1.8);
+  }
+  // The log's oversampled column: none in the first batch (nothing failed yet), half of the later ones.
+  const std::string log = readText(whole + "/train_log.csv");
+  std::istringstream lines(log);
+  std::string header, row;
+  std::getline(lines, header);
+  std::vector<std::string> names;
+  std::stringstream h(header);
+  for (std::string name; std::getline(h, name, ',');) names.push_back(name);
+  const size_t column = std::find(names.begin(), names.end(), "oversampled") - names.begin();
+  ASSERT_LT(column, names.size()) << header;
+  std::vector<std::string> values;
+  while (std::getline(lines, row)) {
+    std::stringstream r(row);
+    std::vector<std::string> cells;
+    for (std::string cell; std::getline(r, cell, ',');) cells.push_back(cell);
+    ASSERT_GT(cells.size(), column);
+    values.push_back(cells[column]);
+  }
+  ASSERT_EQ(values.size(), 3u) << log;  // no validation row: <validation count="0">
+  EXPECT_EQ(values[0], "0");
+  EXPECT_EQ(values[2], "4");
+  // Resumed after 2 iterations, the third draws the same targets again.
+  ASSERT_EQ(pronk("train " + kTinyOversampleTraining + " --iterations 2 --jobs 1 --out " + split + "/p.json").status, 0);
+  const Outcome b = pronk("train " + kTinyOversampleTraining + " --iterations 3 --jobs 2 --out " + split +
+                          "/p.json --resume " + split + "/p.checkpoint.json");
+  ASSERT_EQ(b.status, 0) << b.output;
+  EXPECT_EQ(readJson(split + "/p.checkpoint.json")["hard_targets"], hard);
+  EXPECT_EQ(policyContent(whole + "/p.json"), policyContent(split + "/p.json"));
 }
 
 TEST(PronkTrain, DoesNotDependOnTheNumberOfJobs) {

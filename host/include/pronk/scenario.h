@@ -236,6 +236,10 @@ struct TrainingSpec {
   // meaningful within the piece it was taken in.
   double hindsight_prior_step = 0.5;
   bool mirror = false;
+  // Oversampling (<guidance oversample>): this share of each iteration's targets
+  // is drawn again from the recent targets that failed or were refused (the
+  // newest jumps_per_iteration of them); 0: none.
+  double oversample = 0.0;
   SourceLocation where;
 };
 

@@ -90,6 +90,7 @@ struct TrainingIteration {
   // Hindsight (NaN without it): pairs in the buffer after this batch's, pairs
   // this batch added, the mean fit's last epoch loss.
   double hindsight_pairs = 0, hindsight_added = 0, hindsight_loss = 0;
+  double oversampled = 0;              // targets of the batch drawn again from failed or refused ones
   double policy_loss = 0, value_loss = 0, entropy = 0, kl = 0, clip_fraction = 0;
   double learning_rate = 0, std_mean = 0, value_mean = 0;
   double actor_gradient_norm = 0, critic_gradient_norm = 0;

@@ -101,6 +101,7 @@ void readGuidance(const XMLElement& e, const SourceFile& file, TrainingSpec& t) 
   t.hindsight_learning_rate = r.number("hindsight_learning_rate", t.hindsight_learning_rate, Range::positive());
   t.hindsight_prior_step = r.number("hindsight_prior_step", t.hindsight_prior_step, Range::positive());
   t.mirror = r.boolean("mirror", t.mirror);
+  t.oversample = r.number("oversample", t.oversample, Range::closed(0.0, 0.9));
   r.rejectUnknownAttributes();
   r.children({});
   if (t.aim && t.residual) {

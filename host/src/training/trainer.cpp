@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -178,7 +179,8 @@ json settingsJson(const TrainingSpec& t) {
           {"hindsight_minibatch", t.hindsight_minibatch},
           {"hindsight_learning_rate", t.hindsight_learning_rate},
           {"hindsight_prior_step", t.hindsight_prior_step},
-          {"mirror", t.mirror}};
+          {"mirror", t.mirror},
+          {"oversample", t.oversample}};
 }
 
 // Observation scaling: the task region onto [-1, 1] when the observation is
@@ -289,7 +291,7 @@ class Trainer {
     row.iterations = spec_.iterations;
     row.jumps = jumps_;
     for (double* v : {&row.reward_mean, &row.reward_std, &row.critic_warmup_loss, &row.hindsight_pairs,
-                      &row.hindsight_added, &row.hindsight_loss, &row.policy_loss, &row.value_loss,
+                      &row.hindsight_added, &row.hindsight_loss, &row.oversampled, &row.policy_loss, &row.value_loss,
                       &row.entropy, &row.kl, &row.clip_fraction, &row.learning_rate, &row.std_mean, &row.value_mean,
                       &row.actor_gradient_norm, &row.critic_gradient_norm, &row.jumps_per_s,
                       &row.batch.error_median, &row.batch.error_mean, &row.batch.within_02,
@@ -317,7 +319,8 @@ class Trainer {
     TrainingIteration row = newRow(k);
     const Rng::State target_state = target_rng_.state(), noise_state = noise_rng_.state();
     const int n = spec_.jumps_per_iteration;
-    const std::vector<EpisodeCase> cases = sampler_.cases(target_rng_, n, "iteration " + std::to_string(k));
+    std::vector<EpisodeCase> cases = sampler_.cases(target_rng_, n, "iteration " + std::to_string(k));
+    row.oversampled = oversample(cases);
     const Eigen::MatrixXd noise = drawNoise(noise_rng_, action_size_, n);
     std::vector<CaseDraw> draws(static_cast<size_t>(n));
     state_->noise = &noise;
@@ -326,11 +329,13 @@ class Trainer {
     Eigen::VectorXd rewards = Eigen::VectorXd::Zero(n);
     std::vector<std::optional<std::vector<double>>> achieved(static_cast<size_t>(n));
     std::vector<std::vector<double>> taken(static_cast<size_t>(n));
+    std::vector<TargetSpec> hard;  // this batch's failed and refused targets
     FiguresSink sink;
     const auto t0 = Clock::now();
     const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
       if (stopRequested()) pool_->stop();
       const std::optional<JumpOutcome> outcome = sink.add(r);
+      if (outcome && (outcome->status == "failed" || outcome->status == "rejected")) hard.push_back(r.episode.target);
       observations[r.index] = r.result.observation;
       rewards[static_cast<Eigen::Index>(r.index)] = r.result.reward;
       if (spec_.hindsight && outcome) {
@@ -348,6 +353,12 @@ class Trainer {
     }
     row.batch = sink.figures();
     row.jumps_per_s = n / std::max(row.rollout_s, 1e-9);
+    if (spec_.oversample > 0) {
+      for (TargetSpec& t : hard) {
+        hard_.push_back(std::move(t));
+        if (static_cast<int>(hard_.size()) > spec_.jumps_per_iteration) hard_.pop_front();
+      }
+    }
 
     // The batch: the cases whose policy ran (a case that could not be set up has none).
     std::vector<Eigen::Index> used;
@@ -403,6 +414,24 @@ class Trainer {
     iteration_walls_.push_back(row.rollout_s + row.update_s + row.validation_s);
     finishRow(row);
     return true;
+  }
+
+  // The last share `oversample` of the batch's cases take a target that failed
+  // or was refused before, picked uniformly from the newest ones by the target
+  // stream (after the uniform draws, so that a run is fixed by its seed). Returns
+  // how many were replaced.
+  int oversample(std::vector<EpisodeCase>& cases) {
+    if (spec_.oversample <= 0 || hard_.empty()) return 0;
+    const int n = static_cast<int>(cases.size());
+    const int count = static_cast<int>(std::floor(spec_.oversample * n));
+    for (int i = n - count; i < n; ++i) {
+      const size_t pick = std::min(hard_.size() - 1, static_cast<size_t>(target_rng_.uniform() * hard_.size()));
+      EpisodeCase& c = cases[static_cast<size_t>(i)];
+      c.target = hard_[pick];
+      c.target.name = c.label + " (again)";
+      c.label = c.target.name;
+    }
+    return count;
   }
 
   // The batch's hindsight pairs into the buffer, then the actor's mean fitted
@@ -494,6 +523,11 @@ class Trainer {
     c["log"] = log_;
     c["ppo"] = learner_->checkpoint();
     if (spec_.hindsight) c["hindsight"] = hindsight_.toJson();
+    if (spec_.oversample > 0) {
+      json hard = json::array();
+      for (const TargetSpec& t : hard_) hard.push_back({t.x, t.y, t.z, t.yaw});
+      c["hard_targets"] = hard;
+    }
     training_files::writeJson(paths_.checkpoint, c, "training checkpoint");
   }
 
@@ -543,6 +577,23 @@ class Trainer {
     }
     if (learner_->observationSize() != observation_size_ || learner_->actionSize() != action_size_) {
       read.fail("ppo", "the networks' sizes do not fit environment '" + factory_name_ + "'");
+    }
+    if (spec_.oversample > 0) {
+      hard_.clear();
+      const json& hard = read.at(c, "hard_targets");
+      if (!hard.is_array()) read.fail("hard_targets", "expected an array of [x, y, z, yaw]");
+      for (const json& h : hard) {
+        if (!h.is_array() || h.size() != 4 || !std::all_of(h.begin(), h.end(), [](const json& v) { return v.is_number(); })) {
+          read.fail("hard_targets", "expected an array of [x, y, z, yaw]");
+        }
+        TargetSpec t;
+        t.x = h[0].get<double>();
+        t.y = h[1].get<double>();
+        t.z = h[2].get<double>();
+        t.yaw = h[3].get<double>();
+        t.where = spec_.region_where;
+        hard_.push_back(t);
+      }
     }
     if (spec_.hindsight) {
       try {
@@ -618,6 +669,7 @@ class Trainer {
   std::vector<EpisodeCase> validation_;
   hindsight::Buffer hindsight_;
   Eigen::VectorXd mirror_;  // the task's signs in the mirror image (mirror guidance)
+  std::deque<TargetSpec> hard_;  // the newest failed or refused targets (oversampling)
   std::string factory_name_, origin_;
   int observation_size_ = 0, action_size_ = 0;
   std::shared_ptr<PolicyState> state_;

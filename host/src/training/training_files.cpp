@@ -30,7 +30,7 @@ const std::vector<std::string>& logColumns() {
       "reward_mean", "reward_std",
       "validated", "validation_jumps", "validation_landed", "validation_failed", "validation_rejected",
       "validation_error_median_m", "validation_error_mean_m", "validation_within_0.2m",
-      "critic_warmup_loss", "hindsight_pairs", "hindsight_added", "hindsight_loss", "policy_loss", "value_loss", "entropy", "kl", "clip_fraction",
+      "critic_warmup_loss", "hindsight_pairs", "hindsight_added", "hindsight_loss", "oversampled", "policy_loss", "value_loss", "entropy", "kl", "clip_fraction",
       "learning_rate", "std_mean", "value_mean", "actor_gradient_norm", "critic_gradient_norm",
       "rollout_s", "update_s", "validation_s", "jumps_per_s", "wall_s", "eta_s"};
   return columns;
@@ -46,7 +46,7 @@ std::vector<json> logValues(const TrainingIteration& r) {
           r.validated ? 1 : 0, v.jumps, v.landed, v.failed, v.rejected,
           value(v.error_median), value(v.error_mean), value(v.within_02),
           value(r.critic_warmup_loss), value(r.hindsight_pairs), value(r.hindsight_added), value(r.hindsight_loss),
-          value(r.policy_loss), value(r.value_loss), value(r.entropy), value(r.kl),
+          value(r.oversampled), value(r.policy_loss), value(r.value_loss), value(r.entropy), value(r.kl),
           value(r.clip_fraction), value(r.learning_rate), value(r.std_mean), value(r.value_mean),
           value(r.actor_gradient_norm), value(r.critic_gradient_norm),
           value(r.rollout_s), value(r.update_s), value(r.validation_s), value(r.jumps_per_s), value(r.wall_s),
