@@ -1,7 +1,8 @@
 // An episode's trace turned into an MP4: frames sampled at the video's rate
 // (slow motion with speed < 1), the phase (thrust, flight, landing) named on
-// screen with its colour, the time, a timeline bar, the target and, at the
-// end, the landing error.
+// screen with its colour, the time and speed, a timeline bar, the target with
+// its yaw, a legend of the markers and, from touchdown on, the landing error;
+// a title card between the jumps of a multi-jump video (docs/video.md).
 #pragma once
 
 #include <iosfwd>
