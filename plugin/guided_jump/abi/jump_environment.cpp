@@ -68,14 +68,6 @@ struct EnvironmentSettings {
   bool derive_workspace_z = false;
 };
 
-void checkRanges(const EnvironmentSettings& s) {
-  try {
-    s.ranges.check();
-  } catch (const std::invalid_argument& e) {
-    throw InvalidArgument(std::string("parameters 'action_min' / 'action_max': ") + e.what());
-  }
-}
-
 // The paper's Go1 workspace band of the trunk height (m), scaled like the ranges.
 constexpr double kGo1WorkspaceZ[2] = {0.15, 0.40};
 
@@ -93,7 +85,11 @@ void deriveFromRobot(EnvironmentSettings* s, const std::optional<std::array<jump
     s->ranges.bounds[i] = {s->action_min.empty() ? derived.bounds[i].min : s->action_min[i],
                            s->action_max.empty() ? derived.bounds[i].max : s->action_max[i]};
   }
-  checkRanges(*s);
+  try {
+    s->ranges.check();
+  } catch (const std::invalid_argument& e) {
+    throw InvalidArgument(std::string("parameters 'action_min' / 'action_max': ") + e.what());
+  }
   if (s->derive_workspace_z) {
     s->reward.workspace_z_min = scale * kGo1WorkspaceZ[0];
     s->reward.workspace_z_max = scale * kGo1WorkspaceZ[1];
@@ -105,21 +101,16 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   s.jump.hold = readHoldSettings(read);
   readCommonJumpSettings(read, &s.jump);
   s.duration = read.real("duration");
-  const std::vector<double> lo = read.vector("action_min"), hi = read.vector("action_max");
-  for (const char* name : {"action_min", "action_max"}) {
-    const size_t n = read.vector(name).size();
-    if (n != 0 && n != kActionSize) {
-      throw InvalidArgument(std::string("parameter '") + name + "' has " + std::to_string(n) +
+  // Filled in and checked once the robot is known (deriveFromRobot).
+  s.action_min = read.vector("action_min");
+  s.action_max = read.vector("action_max");
+  for (const auto& [name, bounds] : {std::pair{"action_min", &s.action_min}, std::pair{"action_max", &s.action_max}}) {
+    if (!bounds->empty() && bounds->size() != kActionSize) {
+      throw InvalidArgument(std::string("parameter '") + name + "' has " + std::to_string(bounds->size()) +
                             " numbers; it takes 13, or none for the robot's own");
     }
   }
-  s.action_min = lo;
-  s.action_max = hi;
   s.ranges.raw_limit = read.real("raw_limit");
-  if (!lo.empty() && !hi.empty()) {  // checked now; one left empty is checked once derived
-    for (int i = 0; i < kActionSize; ++i) s.ranges.bounds[i] = {lo[i], hi[i]};
-    checkRanges(s);
-  }
   s.reward.friction_coefficient = read.real("friction_coefficient");
   const std::vector<double> band = read.vector("workspace_z");
   if (band.size() != 0 && band.size() != 2) {
@@ -176,7 +167,6 @@ class JumpEnvironment {
                                "the Go1's (set action_min, action_max and workspace_z)");
     }
     deriveFromRobot(&settings_, legs_);
-    settings_.reward.raw_action_limit = settings_.ranges.raw_limit;
     double g[3] = {0, 0, 0};
     host->gravity(host->host, g);
     gravity_ = vec(g);
