@@ -173,6 +173,16 @@ int benchCommand(const CommonOptions& common, const BenchOptions& options) {
               stand_reference.wall_per_sim / stand_default.wall_per_sim,
               jump_reference.wall_per_sim / jump_default.wall_per_sim);
 
+  // Every error column is measured against the references: one that stopped
+  // early makes them meaningless, so the bench says so and fails.
+  for (const Measurement* r : {&stand_reference, &jump_reference}) {
+    if (r->status != "ok") {
+      std::fprintf(stderr, "pronk bench: the reference run (%s) did not finish: %s; its errors are not meaningful\n",
+                   r->label.c_str(), r->status.c_str());
+      return kEpisodeFailed;
+    }
+  }
+
   if (options.sweep) {
     std::printf("\nSweep, jump with landing, %.1f s:\n\n", jump_duration);
     printHeader();
