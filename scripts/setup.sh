@@ -18,6 +18,7 @@ PACKAGES="build-essential cmake pkg-config
   libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   libfreetype-dev fonts-dejavu-core gnuplot-nox libssl-dev
+  libopenmpi-dev openmpi-bin
   clang libclang-rt-dev llvm"  # scripts/fuzz.sh: libFuzzer, ASan/UBSan runtimes, llvm-symbolizer
 
 if [ "${PRONK_SKIP_APT:-0}" != 1 ]; then

@@ -6,9 +6,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <optional>
 
 #include "commands.h"
 #include "progress.h"
+#include "pronk/communicator.h"
 #include "pronk/evaluation.h"
 #include "pronk/file_io.h"
 #include "pronk/report.h"
@@ -85,6 +88,63 @@ void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
   replaceFileAtomically((fs::path(o.out_dir) / "summary.json").string(), summary.dump(2) + "\n", "summary file");
 }
 
+// Runs `step` on rank 0 alone (what touches --out) and gives its Error, if
+// any, to every rank, so that all ranks stop together instead of some waiting
+// in a collective.
+template <class Step>
+void onRootForAll(const Communicator& comm, Step step) {
+  std::string error;
+  if (comm.root()) {
+    try {
+      step();
+    } catch (const Error& e) {
+      error = e.what();
+    }
+  }
+  error = comm.broadcast(error);
+  if (!error.empty()) throw SharedError(error);
+}
+
+// The cases of `todo` over the ranks of an MPI run: in rounds of 16 cases
+// per worker thread, rank r runs the round's cases k with k mod K = r, rank 0
+// gathers the rows and appends them to the log in `todo`'s order, as one
+// process would (an episode's seed is its case index, so a row does not depend
+// on the rank that ran it). A round at a time, so that an interrupted run
+// keeps every round it finished (--resume).
+void runDistributed(const Communicator& comm, RolloutPool& pool, const std::vector<EpisodeCase>& cases,
+                    const std::vector<size_t>& todo, JumpLog* log, Progress* progress, const StopOnSignal& stop) {
+  const size_t round = static_cast<size_t>(comm.size()) * static_cast<size_t>(pool.threads()) * 16;
+  size_t finished = 0;
+  for (size_t begin = 0; begin < todo.size(); begin += round) {
+    const std::vector<size_t> part(todo.begin() + static_cast<std::ptrdiff_t>(begin),
+                                   todo.begin() + static_cast<std::ptrdiff_t>(std::min(begin + round, todo.size())));
+    nlohmann::json rows = nlohmann::json::array();
+    pool.run(cases, casesOfRank(part, comm.rank(), comm.size()),
+             [&](EpisodeRecord& r) { rows.push_back(toJson(jumpRowOf(r, judgeJump(r)))); });
+    const nlohmann::json mine = {{"rows", rows}, {"stopped", stop.stopped()}};
+    const std::vector<std::string> all = comm.gather(mine.dump());
+    bool stopped = false;
+    if (comm.root()) {
+      std::map<size_t, JumpRow> by_case;
+      for (size_t r = 0; r < all.size(); ++r) {
+        const nlohmann::json j = nlohmann::json::parse(all[r]);
+        stopped = stopped || j.at("stopped").get<bool>();
+        for (const nlohmann::json& row : j.at("rows")) {
+          JumpRow jump = jumpRowFromJson(row, "the rows of rank " + std::to_string(r));
+          by_case.emplace(jump.index, std::move(jump));
+        }
+      }
+      for (size_t index : part) {
+        const auto it = by_case.find(index);
+        if (it == by_case.end()) continue;  // a stopped rank's unstarted case: --resume runs it
+        log->append(it->second);
+        progress->done(++finished);
+      }
+    }
+    if (comm.broadcast(stopped ? "stop" : "") == "stop") return;
+  }
+}
+
 SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToRun& set, const StopOnSignal& stop) {
   SetResult result{set.name, set.file, set.set, {}, {}, false, "", ""};
   const std::unique_ptr<SetRollout> run = prepareSet(common, set, o.policy, o.jobs, stop.flag());
@@ -97,23 +157,43 @@ SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToR
                                    {"policy_fingerprint", policy == "ballistic" ? "" : fileFingerprint(policy)},
                                    {"cases", cases.size()},
                                    {"cases_fingerprint", casesFingerprint(cases)}};
-  EvaluationSetDir dir((fs::path(o.out_dir) / set.name).string(), manifest, o.resume);
-  const std::vector<size_t> todo = dir.remaining(cases.size());
+  // Under mpirun rank 0 alone owns the set's directory; the others run jumps.
+  const Communicator& comm = Communicator::world();
+  std::optional<EvaluationSetDir> owned;
+  std::vector<size_t> todo;
+  onRootForAll(comm, [&] {
+    owned.emplace((fs::path(o.out_dir) / set.name).string(), manifest, o.resume);
+    todo = owned->remaining(cases.size());
+  });
+  if (comm.distributed()) {
+    const nlohmann::json left = comm.broadcast(nlohmann::json(todo).dump());
+    todo = nlohmann::json::parse(left.get<std::string>()).get<std::vector<size_t>>();
+  }
 
   const std::string robot = set.scenario.platform.name;
-  std::printf("set %s: %s, policy %s, %zu jump(s)", set.name.c_str(), set.file.c_str(), policy.c_str(), cases.size());
-  if (todo.size() < cases.size()) std::printf(", %zu done before (--resume)", cases.size() - todo.size());
-  std::printf(", %d thread(s)\n", pool.threads());
-  std::fflush(stdout);
+  if (comm.root()) {
+    std::printf("set %s: %s, policy %s, %zu jump(s)", set.name.c_str(), set.file.c_str(), policy.c_str(), cases.size());
+    if (todo.size() < cases.size()) std::printf(", %zu done before (--resume)", cases.size() - todo.size());
+    if (comm.distributed()) std::printf(", %d ranks", comm.size());
+    std::printf(", %d thread(s)%s\n", pool.threads(), comm.distributed() ? " each" : "");
+    std::fflush(stdout);
+  }
 
-  Progress progress("jump", todo.size());
-  size_t finished = 0;
-  if (!todo.empty()) {
+  if (comm.distributed()) {
+    std::optional<Progress> progress;
+    if (comm.root()) progress.emplace("jump", todo.size());
+    runDistributed(comm, pool, cases, todo, comm.root() ? &owned->log() : nullptr, progress ? &*progress : nullptr,
+                   stop);
+    if (!comm.root()) return result;
+  } else if (!todo.empty()) {
+    Progress progress("jump", todo.size());
+    size_t finished = 0;
     pool.run(cases, todo, [&](EpisodeRecord& r) {
-      dir.log().append(jumpRowOf(r, judgeJump(r)));
+      owned->log().append(jumpRowOf(r, judgeJump(r)));
       progress.done(++finished);
     });
   }
+  EvaluationSetDir& dir = *owned;
   std::vector<JumpRow> rows = dir.log().rows();
   std::sort(rows.begin(), rows.end(), [](const JumpRow& a, const JumpRow& b) { return a.index < b.index; });
   result.summary = summarize(rows, o.radius);
@@ -142,31 +222,36 @@ SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToR
 int runEval(const CommonOptions& common, const EvalOptions& o) {
   // Every file is read and checked before any jump runs.
   const std::vector<SetToRun> sets = setsOf(o);
-  std::error_code ec;
-  if (!o.resume && fs::exists(fs::path(o.out_dir) / "summary.json", ec)) {
-    throw Error("--out " + o.out_dir + ": holds an earlier evaluation (summary.json): give --resume, or another --out");
-  }
-  fs::create_directories(o.out_dir, ec);
-  if (ec) throw Error("--out " + o.out_dir + ": cannot create the directory: " + ec.message());
+  const Communicator& comm = Communicator::world();
+  onRootForAll(comm, [&] {
+    std::error_code ec;
+    if (!o.resume && fs::exists(fs::path(o.out_dir) / "summary.json", ec)) {
+      throw Error("--out " + o.out_dir + ": holds an earlier evaluation (summary.json): give --resume, or another --out");
+    }
+    fs::create_directories(o.out_dir, ec);
+    if (ec) throw Error("--out " + o.out_dir + ": cannot create the directory: " + ec.message());
+  });
 
   const StopOnSignal stop;
   const auto start = std::chrono::steady_clock::now();
   std::vector<SetResult> results;
   bool errors = false;
   for (const SetToRun& set : sets) {
-    if (stop.stopped()) break;
+    // Every rank takes the same decision (rank 0's), or one would wait for ever.
+    if (comm.broadcast(stop.stopped() ? "stop" : "") == "stop") break;
     try {
       results.push_back(runSet(common, o, set, stop));
       errors = errors || !results.back().plot_error.empty();
     } catch (const Error& e) {
       // The set fails alone, with its reason; the others run.
-      std::fprintf(stderr, "pronk eval: set %s: %s\n", set.name.c_str(), e.what());
+      if (comm.root()) std::fprintf(stderr, "pronk eval: set %s: %s\n", set.name.c_str(), e.what());
       SetResult failed{set.name, set.file, set.set, {}, {}, false, e.what(), ""};
       results.push_back(failed);
       errors = true;
     }
-    writeSummary(o, results);
+    if (comm.root()) writeSummary(o, results);
   }
+  if (!comm.root()) return kOk;  // rank 0 reports the run and gives its exit status
   printSummaryTable(results, o.radius);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   size_t jumps = 0;

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "pronk/communicator.h"
 #include "pronk/error.h"
 #include "pronk/plugin_abi.h"
 
@@ -37,15 +38,33 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kOk : kUsageError;
   }
+  // Under mpirun every rank runs this; the ranks of an eval share its jumps.
+  // One rank's error ends them all: the others would wait in a collective.
+  const pronk::Communicator* comm = nullptr;
+  auto fail = [&](int code, const std::string& text) {
+    std::cerr << "pronk" << (comm && comm->distributed() ? " (rank " + std::to_string(comm->rank()) + ")" : "")
+              << ": " << text << "\n";
+    if (comm && comm->distributed()) comm->abort(code);
+    return code;
+  };
   try {
-    for (const Subcommand& c : commands)
-      if (*c.app) return c.run();
-  } catch (const pronk::Error& e) {
-    std::cerr << "pronk: " << e.what() << "\n";
+    comm = &pronk::Communicator::world();
+    for (const Subcommand& c : commands) {
+      if (!*c.app) continue;
+      if (comm->distributed() && c.app->get_name() != "eval") {
+        return fail(kUsageError, "pronk " + c.app->get_name() + " runs in one process; under mpirun only pronk eval " +
+                                     "shares its jumps over the ranks");
+      }
+      return c.run();
+    }
+  } catch (const pronk::SharedError& e) {
+    // Every rank has it: rank 0 says it once and all end normally.
+    if (!comm || comm->root()) std::cerr << "pronk: " << e.what() << "\n";
     return kInputError;
+  } catch (const pronk::Error& e) {
+    return fail(kInputError, e.what());
   } catch (const std::exception& e) {
-    std::cerr << "pronk: internal error: " << e.what() << "\n";
-    return kInternalError;
+    return fail(kInternalError, std::string("internal error: ") + e.what());
   }
   return kUsageError;
 }

@@ -161,6 +161,68 @@ namespace {
 
 // `pronk check`: each <expect> bound is one result, a miss names its line and
 // makes the exit status 4, and the JUnit report has one test case per bound.
+// Each jump's row without its wall time, the one figure that differs between runs.
+std::vector<nlohmann::json> rowsWithoutWallTime(const std::string& jsonl) {
+  std::vector<nlohmann::json> rows;
+  for (const std::string& line : lines(jsonl)) {
+    nlohmann::json row = nlohmann::json::parse(line);
+    row.erase("wall_s");
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(PronkEval, MpiRanksShareTheJumpsAndGiveWhatOneProcessGives) {
+#ifndef PRONK_MPIEXEC
+  GTEST_SKIP() << "built without MPI (PRONK_WITH_MPI off)";
+#else
+  // Two ranks of one thread each against one process of two threads: the same
+  // rows to the last bit, in the same order (a jump's seed is its case index).
+  const std::string ranks = outDir("eval_mpi_ranks"), threads = outDir("eval_mpi_threads");
+  const std::string args = " eval " + kSmall + " --policy ballistic --no-plots";
+  const pronk_test::Outcome m = pronk_test::shell(std::string(PRONK_MPIEXEC) +
+                                                  " -np 2 --allow-run-as-root --oversubscribe " + PRONK_EXE + args +
+                                                  " --jobs 1 --out " + ranks);
+  ASSERT_EQ(m.status, 0) << m.output;
+  EXPECT_NE(m.output.find("2 ranks"), std::string::npos) << m.output;
+  const pronk_test::Outcome t = pronk(args.substr(1) + " --jobs 2 --out " + threads);
+  ASSERT_EQ(t.status, 0) << t.output;
+  for (const char* set : {"go1_eval_small-targets", "go1_eval_small-ahead"}) {
+    const auto a = rowsWithoutWallTime(ranks + "/" + set + "/jumps.jsonl");
+    const auto b = rowsWithoutWallTime(threads + "/" + set + "/jumps.jsonl");
+    ASSERT_FALSE(a.empty()) << set;
+    EXPECT_EQ(a, b) << set;
+  }
+  nlohmann::json a = summary(ranks)["sets"], b = summary(threads)["sets"];
+  ASSERT_EQ(a.size(), 2u);
+  for (nlohmann::json* sets : {&a, &b})
+    for (nlohmann::json& set : *sets) set["summary"].erase("episode_wall_s");
+  EXPECT_EQ(a, b);
+  // An error rank 0 finds in --out ends every rank, with its message, once.
+  const pronk_test::Outcome again = pronk_test::shell(std::string(PRONK_MPIEXEC) +
+                                                      " -np 2 --allow-run-as-root --oversubscribe " + PRONK_EXE + args +
+                                                      " --out " + ranks);
+  EXPECT_EQ(again.status, 3) << again.output;
+  const std::string message = "holds an earlier evaluation (summary.json)";
+  const size_t first = again.output.find(message);
+  ASSERT_NE(first, std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find(message, first + 1), std::string::npos) << again.output;
+#endif
+}
+
+TEST(PronkEval, UnderMpirunOnlyEvalRuns) {
+#ifndef PRONK_MPIEXEC
+  GTEST_SKIP() << "built without MPI (PRONK_WITH_MPI off)";
+#else
+  // Every rank would run the whole jump and write the same files.
+  const pronk_test::Outcome o = pronk_test::shell(std::string(PRONK_MPIEXEC) +
+                                                  " -np 2 --allow-run-as-root --oversubscribe " + PRONK_EXE + " run " +
+                                                  pronk_test::source("scenarios/go1/forward.xml") + " --policy ballistic");
+  EXPECT_NE(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("pronk run runs in one process"), std::string::npos) << o.output;
+#endif
+}
+
 TEST(PronkCheck, AMissNamesItsLineAndFailsTheRunWithAJUnitCasePerBound) {
   const std::string out = outDir("check_small");
   fs::create_directories(out);
