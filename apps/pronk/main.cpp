@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kOk : kUsageError;
   }
-  // Under mpirun every rank runs this; the ranks of an eval share its jumps.
+  // Under mpirun every rank runs this; the ranks of an eval or a training share its jumps.
   // One rank's error ends them all: the others would wait in a collective.
   const pronk::Communicator* comm = nullptr;
   auto fail = [&](int code, const std::string& text) {
@@ -51,9 +51,9 @@ int main(int argc, char** argv) {
     comm = &pronk::Communicator::world();
     for (const Subcommand& c : commands) {
       if (!*c.app) continue;
-      if (comm->distributed() && c.app->get_name() != "eval") {
+      if (comm->distributed() && c.app->get_name() != "eval" && c.app->get_name() != "train") {
         return fail(kUsageError, "pronk " + c.app->get_name() + " runs in one process; under mpirun only pronk eval " +
-                                     "shares its jumps over the ranks");
+                                     "and pronk train share their jumps over the ranks");
       }
       return c.run();
     }

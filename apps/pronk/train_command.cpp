@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "pronk/communicator.h"
 #include "pronk/controller_factory.h"
 #include "pronk/training.h"
 #include "render/plot/training_plots.h"
@@ -88,15 +89,25 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
   run.git_commit = PRONK_GIT_COMMIT;
 
   const TrainingSpec& t = *scenario.training;
+  // Under mpirun rank 0 learns and reports; the other ranks roll out in silence.
+  const Communicator& comm = Communicator::world();
+  if (!comm.root()) {
+    // A signal (mpirun passes SIGINT and SIGTERM to every rank) leaves a rank to
+    // finish its share of the round; rank 0 stops the run and writes what finished.
+    const StopOnSignal outlast;
+    const TrainingOutcome worker = trainPolicy(scenario, registry, run, nullptr, nullptr);
+    return worker.rolled_out_only ? kOk : kInternalError;
+  }
   std::printf("training    %s\n", o.file.c_str());
   std::string guidance = t.aim ? "aim correction of its prior_action" : t.residual ? "residual over its prior_action"
                                                                                   : "no prior";
   if (t.hindsight) guidance += ", hindsight";
   if (!t.ppo_actor) guidance += ", PPO fits the critic only";
-  std::printf("environment %s, %s, %d iteration(s) x %d jumps, seed %lu, %d thread(s)%s\n", spec.factory.c_str(),
+  std::printf("environment %s, %s, %d iteration(s) x %d jumps, seed %lu, %s%d thread(s)%s%s\n", spec.factory.c_str(),
               guidance.c_str(), run.iterations.value_or(t.iterations),
-              run.jumps_per_iteration.value_or(t.jumps_per_iteration), run.seed.value_or(t.seed), run.threads,
-              o.resume.empty() ? "" : (", resuming " + o.resume).c_str());
+              run.jumps_per_iteration.value_or(t.jumps_per_iteration), run.seed.value_or(t.seed),
+              comm.distributed() ? (std::to_string(comm.size()) + " ranks of ").c_str() : "", run.threads,
+              comm.distributed() ? " each" : "", o.resume.empty() ? "" : (", resuming " + o.resume).c_str());
   std::fflush(stdout);
 
   std::optional<TrainingOutcome> outcome_or;

@@ -28,6 +28,16 @@ inline Outcome shell(const std::string& command_line) {
 // Runs `pronk ARGS` and returns its exit status and output.
 inline Outcome pronk(const std::string& args) { return shell(std::string(PRONK_EXE) + " " + args); }
 
+#ifdef PRONK_MPIEXEC
+// `mpirun` for two ranks as a test runs it: as root in a container, two ranks
+// whatever the cores, and shared memory without the single-copy mechanism that
+// a container's ptrace rules may forbid.
+inline std::string mpirunTwo() {
+  return std::string(PRONK_MPIEXEC) +
+         " -np 2 --allow-run-as-root --oversubscribe --mca btl_vader_single_copy_mechanism none " + PRONK_EXE;
+}
+#endif
+
 inline std::string source(const std::string& relative) { return std::string(PRONK_SOURCE_DIR) + "/" + relative; }
 inline std::string cliScenario(const std::string& name) {
   return std::string(PRONK_CLI_TEST_DIR) + "/scenarios/" + name;

@@ -319,6 +319,42 @@ TEST(PronkTrain, DoesNotDependOnTheNumberOfJobs) {
       << "the residual's head is still zero";
 }
 
+TEST(PronkTrain, MpiRanksRollOutAndGiveWhatOneProcessGives) {
+#ifndef PRONK_MPIEXEC
+  GTEST_SKIP() << "built without MPI (PRONK_WITH_MPI off)";
+#else
+  // Two ranks of one thread (rank 0 learns, both roll out) against one process
+  // of two threads, with the aim correction, hindsight and oversampling (each
+  // case's draw and the failed targets cross over): the same learner, buffer,
+  // streams and log, to the last bit, also across a resume.
+  const std::string ranks = outDir("train_mpi_ranks"), threads = outDir("train_mpi_threads");
+  const std::string mpirun = pronk_test::mpirunTwo();
+  const std::string file = " train " + kTinyOversampleTraining;
+  Outcome m = pronk_test::shell(mpirun + file + " --jobs 1 --iterations 1 --out " + ranks + "/p.json");
+  ASSERT_EQ(m.status, 0) << m.output;
+  EXPECT_NE(m.output.find("2 ranks of 1 thread(s) each"), std::string::npos) << m.output;
+  m = pronk_test::shell(mpirun + file + " --jobs 1 --out " + ranks + "/p.json --resume " + ranks + "/p.checkpoint.json");
+  ASSERT_EQ(m.status, 0) << m.output;
+  const Outcome t = pronk(file.substr(1) + " --jobs 2 --out " + threads + "/p.json");
+  ASSERT_EQ(t.status, 0) << t.output;
+  EXPECT_EQ(policyContent(ranks + "/p.json"), policyContent(threads + "/p.json"));
+  const json a = readJson(ranks + "/p.checkpoint.json"), b = readJson(threads + "/p.checkpoint.json");
+  for (const char* key : {"ppo", "hindsight", "hard_targets", "target_rng", "noise_rng", "jumps", "iteration"}) {
+    EXPECT_EQ(a[key], b[key]) << key;
+  }
+  // The log, but for its timings and the first run's planned iterations (--iterations 1).
+  ASSERT_EQ(a["log"].size(), b["log"].size());
+  const json& columns = a["log_columns"];
+  for (size_t r = 0; r < a["log"].size(); ++r) {
+    for (size_t c = 0; c < columns.size(); ++c) {
+      const std::string name = columns[c].get<std::string>();
+      if (name == "iterations" || (name.size() > 2 && name.substr(name.size() - 2) == "_s")) continue;
+      EXPECT_EQ(a["log"][r][c], b["log"][r][c]) << "row " << r << ", " << name;
+    }
+  }
+#endif
+}
+
 TEST(PronkTrain, BadFilesAndOptionsAreErrorsThatSayWhere) {
   const std::string dir = outDir("train_errors");
   const std::string broken = source("tests/scenario/broken/training_yaw_range_reversed.xml");

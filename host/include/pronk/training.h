@@ -106,6 +106,9 @@ struct TrainingOutcome {
   long long jumps = 0;
   double wall_s = 0;
   std::string policy_path, checkpoint_path, log_path;
+  // A rank other than 0 under mpirun: it rolled out its share of each batch;
+  // rank 0 wrote everything.
+  bool rolled_out_only = false;
 };
 
 using TrainingProgress = std::function<void(const TrainingIteration& row)>;

@@ -1,12 +1,14 @@
 // trainPolicy: the training loop of `pronk train` (pronk/training.h): targets
 // and noise drawn on the calling thread, the jumps through one RolloutPool,
 // PPO on the residuals, validation of the mean policy, the log, checkpoints
-// and policy files.
+// and policy files. Under `mpirun` rank 0 runs this loop and learns; every
+// rank rolls out a share of each batch (docs/training.md, "Across processes").
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -14,11 +16,13 @@
 
 #include <Eigen/Core>
 
+#include "pronk/communicator.h"
 #include "pronk/error.h"
 #include "pronk/ppo.h"
 #include "pronk/report.h"
 #include "pronk/rollout.h"
 #include "pronk/training.h"
+#include "case_result.h"
 #include "hindsight.h"
 #include "training_files.h"
 #include "training_streams.h"
@@ -34,17 +38,6 @@ using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// What the exploring policy of one case drew, written by the worker that runs
-// the case (each case by one worker) and read after pool.run.
-struct CaseDraw {
-  bool ran = false;
-  Eigen::VectorXd residual;  // the sampled network action (PPO's Gaussian sample)
-  Eigen::VectorXd prior;     // the environment's prior_action for the case (residual policies)
-  // An aim correction's aim offset as taken: the sample, or 0 where the prior
-  // had no feasible action for the aim and planned for the task itself.
-  Eigen::VectorXd aim_taken;
-};
 
 // What the rollout's policy reads: set on the calling thread before pool.run
 // and left alone while it runs.
@@ -108,13 +101,13 @@ class FiguresSink {
  public:
   // The report's judgement of the jump, for the caller too (none for a case
   // that could not be set up).
-  std::optional<JumpOutcome> add(const EpisodeRecord& r) {
+  std::optional<JumpOutcome> add(const CaseResult& r) {
     ++f_.jumps;
-    if (r.setup_error) {
+    if (!r.outcome) {
       ++f_.setup_errors;
       return std::nullopt;
     }
-    JumpOutcome o = judgeJump(r);
+    const JumpOutcome& o = *r.outcome;
     if (o.status == "failed") ++f_.failed;
     if (o.status == "rejected") ++f_.rejected;
     if (o.status == "ok" || o.status == "missed") {
@@ -228,7 +221,8 @@ class Trainer {
     paths_.policy = options.policy_path;
     paths_.checkpoint = checkpointPathFor(options.policy_path);
     paths_.log = (fs::path(options.policy_path).parent_path() / "train_log.csv").string();
-    if (!options.resume.empty()) {
+    // Under mpirun only rank 0 reads the checkpoint: the others get the policy with each round.
+    if (!options.resume.empty() && Communicator::world().root()) {
       resume(options.resume);
     } else {
       learner_ = std::make_unique<PpoLearner>(ppoConfigOf(spec_), scalingOf(spec_, observation_size_), action_size_,
@@ -306,24 +300,50 @@ class Trainer {
     state_->noise = nullptr;
     state_->draws = nullptr;
     FiguresSink sink;
-    const size_t delivered = pool_->run(validation_, [&](EpisodeRecord& r) {
-      if (stopRequested()) pool_->stop();
-      sink.add(r);
-    });
+    const bool whole = rollout(validation_, {{"round", "validate"}, {"ppo", learner_->checkpoint()}},
+                               [&](const CaseResult& r) { sink.add(r); });
     figures = sink.figures();
-    return delivered == validation_.size() && !stopRequested();
+    return whole && !stopRequested();
+  }
+
+  // A batch's cases (the last share oversampled) and exploration noise, drawn
+  // from the two streams as they stand: rank 0 and every other rank draw the
+  // same batch from the same states.
+  struct Batch {
+    std::vector<EpisodeCase> cases;
+    Eigen::MatrixXd noise;
+    int oversampled = 0;
+  };
+  Batch drawBatch(int k) {
+    Batch b;
+    b.cases = sampler_.cases(target_rng_, spec_.jumps_per_iteration, "iteration " + std::to_string(k));
+    b.oversampled = oversample(b.cases);
+    b.noise = drawNoise(noise_rng_, action_size_, spec_.jumps_per_iteration);
+    return b;
+  }
+
+  json hardTargetsJson() const {
+    json hard = json::array();
+    for (const TargetSpec& t : hard_) hard.push_back({t.x, t.y, t.z, t.yaw});
+    return hard;
   }
 
   // Iteration k: false when stopped before its update (nothing of it is kept).
   bool iterate(int k) {
     TrainingIteration row = newRow(k);
     const Rng::State target_state = target_rng_.state(), noise_state = noise_rng_.state();
+    const json round = {{"round", "iterate"},
+                        {"iteration", k},
+                        {"target_rng", training_files::rngJson(target_rng_)},
+                        {"noise_rng", training_files::rngJson(noise_rng_)},
+                        {"hard_targets", hardTargetsJson()},
+                        {"ppo", learner_->checkpoint()}};
     const int n = spec_.jumps_per_iteration;
-    std::vector<EpisodeCase> cases = sampler_.cases(target_rng_, n, "iteration " + std::to_string(k));
-    row.oversampled = oversample(cases);
-    const Eigen::MatrixXd noise = drawNoise(noise_rng_, action_size_, n);
+    const Batch drawn = drawBatch(k);
+    const std::vector<EpisodeCase>& cases = drawn.cases;
+    row.oversampled = drawn.oversampled;
     std::vector<CaseDraw> draws(static_cast<size_t>(n));
-    state_->noise = &noise;
+    state_->noise = &drawn.noise;
     state_->draws = &draws;
     std::vector<std::vector<double>> observations(static_cast<size_t>(n));
     Eigen::VectorXd rewards = Eigen::VectorXd::Zero(n);
@@ -332,21 +352,23 @@ class Trainer {
     std::vector<TargetSpec> hard;  // this batch's failed and refused targets
     FiguresSink sink;
     const auto t0 = Clock::now();
-    const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
-      if (stopRequested()) pool_->stop();
+    const bool whole = rollout(cases, round, [&](const CaseResult& r) {
       const std::optional<JumpOutcome> outcome = sink.add(r);
-      if (outcome && (outcome->status == "failed" || outcome->status == "rejected")) hard.push_back(r.episode.target);
-      observations[r.index] = r.result.observation;
-      rewards[static_cast<Eigen::Index>(r.index)] = r.result.reward;
+      const TargetSpec& target = cases[r.index].target;
+      if (outcome && (outcome->status == "failed" || outcome->status == "rejected")) hard.push_back(target);
+      observations[r.index] = r.observation;
+      rewards[static_cast<Eigen::Index>(r.index)] = r.reward;
       if (spec_.hindsight && outcome) {
-        achieved[r.index] = hindsight::achievedTask(*outcome, r.episode.target, spec_);
-        taken[r.index] = r.result.action;
+        achieved[r.index] = hindsight::achievedTask(*outcome, target, spec_);
+        taken[r.index] = r.action;
       }
+      // Another rank's draw: the policy there wrote it, here it comes with the result.
+      if (r.draw.ran) draws[r.index] = r.draw;
     });
     state_->noise = nullptr;
     state_->draws = nullptr;
     row.rollout_s = secondsSince(t0);
-    if (delivered < cases.size() || stopRequested()) {
+    if (!whole || stopRequested()) {
       target_rng_.setState(target_state);
       noise_rng_.setState(noise_state);
       return false;
@@ -416,6 +438,109 @@ class Trainer {
     return true;
   }
 
+  // Runs `cases` and hands each one's result to `on_case`, in case order, on
+  // this thread; false when stopped before every case ran. In one process:
+  // this process's pool. Under mpirun (rank 0): `round` first goes to every
+  // rank (what they need to draw the same cases and act as this policy would),
+  // rank r runs the cases k with k mod K = r, and rank 0 gathers the results.
+  bool rollout(const std::vector<EpisodeCase>& cases, const json& round,
+               const std::function<void(const CaseResult&)>& on_case) {
+    const Communicator& comm = Communicator::world();
+    if (!comm.distributed()) {
+      const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
+        if (stopRequested()) pool_->stop();
+        on_case(caseResultOf(r, state_->draws ? &(*state_->draws)[r.index] : nullptr));
+      });
+      return delivered == cases.size();
+    }
+    comm.broadcast(round.dump());
+    std::vector<CaseResult> results(cases.size());
+    std::vector<bool> have(cases.size(), false);
+    std::vector<size_t> all(cases.size());
+    std::iota(all.begin(), all.end(), size_t{0});
+    pool_->run(cases, casesOfRank(all, comm.rank(), comm.size()), [&](EpisodeRecord& r) {
+      if (stopRequested()) pool_->stop();
+      results[r.index] = caseResultOf(r, state_->draws ? &(*state_->draws)[r.index] : nullptr);
+      have[r.index] = true;
+    });
+    const std::vector<std::string> parts = comm.gather("[]");
+    for (size_t rank = 1; rank < parts.size(); ++rank) {
+      for (const json& j : json::parse(parts[rank])) {
+        CaseResult r = caseResultFromJson(j);
+        if (r.index >= cases.size()) throw Error("training: rank " + std::to_string(rank) + " sent case " + std::to_string(r.index));
+        have[r.index] = true;
+        results[r.index] = std::move(r);
+      }
+    }
+    bool whole = true;
+    for (size_t i = 0; i < cases.size(); ++i) {
+      if (have[i]) {
+        on_case(results[i]);
+      } else {
+        whole = false;
+      }
+    }
+    return whole;
+  }
+
+ public:
+  // A rank other than 0 under mpirun: rolls out its share of each round rank 0
+  // sends, with the policy and streams that round carries, until the end.
+  void serve() {
+    const Communicator& comm = Communicator::world();
+    const training_files::JsonReader read("the training round of rank 0");
+    std::vector<size_t> all;
+    for (;;) {
+      const json round = json::parse(comm.broadcast(""));
+      const std::string kind = read.string(round, "round");
+      if (kind == "end") return;
+      learner_ = std::make_unique<PpoLearner>(PpoLearner::fromCheckpoint(read.at(round, "ppo")));
+      state_->learner = learner_.get();
+      std::optional<Batch> batch;
+      std::vector<CaseDraw> draws;
+      const std::vector<EpisodeCase>* cases = &validation_;
+      state_->noise = nullptr;
+      state_->draws = nullptr;
+      if (kind == "iterate") {
+        target_rng_.setState(read.rng(round, "target_rng"));
+        noise_rng_.setState(read.rng(round, "noise_rng"));
+        hard_.clear();
+        for (const json& h : read.at(round, "hard_targets")) {
+          TargetSpec t;
+          t.x = h.at(0).get<double>();
+          t.y = h.at(1).get<double>();
+          t.z = h.at(2).get<double>();
+          t.yaw = h.at(3).get<double>();
+          t.where = spec_.region_where;
+          hard_.push_back(t);
+        }
+        batch = drawBatch(static_cast<int>(read.integer(round, "iteration")));
+        cases = &batch->cases;
+        draws.resize(cases->size());
+        state_->noise = &batch->noise;
+        state_->draws = &draws;
+      } else if (kind != "validate") {
+        read.fail("round", "unknown round '" + kind + "'");
+      }
+      all.resize(cases->size());
+      std::iota(all.begin(), all.end(), size_t{0});
+      json mine = json::array();
+      pool_->run(*cases, casesOfRank(all, comm.rank(), comm.size()), [&](EpisodeRecord& r) {
+        mine.push_back(toJson(caseResultOf(r, state_->draws ? &draws[r.index] : nullptr)));
+      });
+      state_->noise = nullptr;
+      state_->draws = nullptr;
+      comm.gather(mine.dump());
+    }
+  }
+
+  // Rank 0: tells the other ranks that the run is over.
+  static void endRounds() {
+    const Communicator& comm = Communicator::world();
+    if (comm.distributed() && comm.root()) comm.broadcast(json{{"round", "end"}}.dump());
+  }
+
+ private:
   // The last share `oversample` of the batch's cases take a target that failed
   // or was refused before, picked uniformly from the newest ones by the target
   // stream (after the uniform draws, so that a run is fixed by its seed). Returns
@@ -696,13 +821,21 @@ TrainingOutcome trainPolicy(const Scenario& scenario, const PluginRegistry& regi
                             const TrainingProgress& on_row, const std::atomic<bool>* stop) {
   if (options.policy_path.empty()) throw Error("training: no policy file to write (--out)");
   const fs::path dir = fs::path(options.policy_path).parent_path();
-  if (!dir.empty()) {
+  if (!dir.empty() && Communicator::world().root()) {
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw Error("--out " + options.policy_path + ": cannot create " + dir.string() + ": " + ec.message());
   }
   Trainer trainer(scenario, registry, options, on_row, stop);
-  return trainer.run();
+  if (!Communicator::world().root()) {
+    trainer.serve();
+    TrainingOutcome worker;
+    worker.rolled_out_only = true;
+    return worker;
+  }
+  TrainingOutcome outcome = trainer.run();
+  Trainer::endRounds();
+  return outcome;
 }
 
 }  // namespace pronk
