@@ -300,8 +300,9 @@ class Trainer {
     state_->noise = nullptr;
     state_->draws = nullptr;
     FiguresSink sink;
-    const bool whole = rollout(validation_, {{"round", "validate"}, {"ppo", learner_->checkpoint()}},
-                               [&](const CaseResult& r) { sink.add(r); });
+    const bool whole = rollout(
+        validation_, [&] { return json{{"round", "validate"}, {"ppo", learner_->checkpoint()}}; },
+        [&](const CaseResult& r) { sink.add(r); });
     figures = sink.figures();
     return whole && !stopRequested();
   }
@@ -332,12 +333,16 @@ class Trainer {
   bool iterate(int k) {
     TrainingIteration row = newRow(k);
     const Rng::State target_state = target_rng_.state(), noise_state = noise_rng_.state();
-    const json round = {{"round", "iterate"},
-                        {"iteration", k},
-                        {"target_rng", training_files::rngJson(target_rng_)},
-                        {"noise_rng", training_files::rngJson(noise_rng_)},
-                        {"hard_targets", hardTargetsJson()},
-                        {"ppo", learner_->checkpoint()}};
+    // What the other ranks need to draw this batch: the streams before it.
+    const json target_rng = training_files::rngJson(target_rng_), noise_rng = training_files::rngJson(noise_rng_);
+    const auto round = [&] {
+      return json{{"round", "iterate"},
+                  {"iteration", k},
+                  {"target_rng", target_rng},
+                  {"noise_rng", noise_rng},
+                  {"hard_targets", hardTargetsJson()},
+                  {"ppo", learner_->checkpoint()}};
+    };
     const int n = spec_.jumps_per_iteration;
     const Batch drawn = drawBatch(k);
     const std::vector<EpisodeCase>& cases = drawn.cases;
@@ -440,10 +445,10 @@ class Trainer {
 
   // Runs `cases` and hands each one's result to `on_case`, in case order, on
   // this thread; false when stopped before every case ran. In one process:
-  // this process's pool. Under mpirun (rank 0): `round` first goes to every
+  // this process's pool. Under mpirun (rank 0): `round()` first goes to every
   // rank (what they need to draw the same cases and act as this policy would),
   // rank r runs the cases k with k mod K = r, and rank 0 gathers the results.
-  bool rollout(const std::vector<EpisodeCase>& cases, const json& round,
+  bool rollout(const std::vector<EpisodeCase>& cases, const std::function<json()>& round,
                const std::function<void(const CaseResult&)>& on_case) {
     const Communicator& comm = Communicator::world();
     if (!comm.distributed()) {
@@ -453,7 +458,7 @@ class Trainer {
       });
       return delivered == cases.size();
     }
-    comm.broadcast(round.dump());
+    comm.broadcast(round().dump());
     std::vector<CaseResult> results(cases.size());
     std::vector<bool> have(cases.size(), false);
     std::vector<size_t> all(cases.size());
@@ -648,11 +653,7 @@ class Trainer {
     c["log"] = log_;
     c["ppo"] = learner_->checkpoint();
     if (spec_.hindsight) c["hindsight"] = hindsight_.toJson();
-    if (spec_.oversample > 0) {
-      json hard = json::array();
-      for (const TargetSpec& t : hard_) hard.push_back({t.x, t.y, t.z, t.yaw});
-      c["hard_targets"] = hard;
-    }
+    if (spec_.oversample > 0) c["hard_targets"] = hardTargetsJson();
     training_files::writeJson(paths_.checkpoint, c, "training checkpoint");
   }
 
