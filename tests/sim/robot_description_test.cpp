@@ -219,6 +219,20 @@ TEST(RobotDescription, APercentSignIsRefusedBeforeUrdfdomPrintsIt) {
   }
 }
 
+TEST(RobotDescription, APercentSignAnywhereIsRefusedWhateverTheXmlReaderMakesOfIt) {
+  // Found by fuzzing: a broken <?xml declaration that tinyxml2 ends further down
+  // hid a robot with "%S" in an rgba from the check above, and urdfdom read it.
+  const std::string path = (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" /
+                            "percent_in_a_broken_declaration.urdf")
+                               .string();
+  try {
+    loadUrdf(path);
+    FAIL() << "a '%' reached urdfdom";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":2: a '%' outside any attribute", 0), 0u) << e.what();
+  }
+}
+
 TEST(RobotDescription, ALoopWithoutASecondParentIsRefusedAtItsJoint) {
   // Found by fuzzing (urdfdom's links around the loop were never freed): a
   // link jointed to itself, or links each other's parent apart from the

@@ -4,6 +4,7 @@
 #include "pronk/robot_description.h"
 #include "pronk/file_io.h"
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
@@ -180,6 +181,19 @@ void checkNoPercentSign(const tinyxml2::XMLElement& robot, const std::string& or
       }
     }
   }
+}
+
+// The same anywhere in the text, comments too: XML readers may disagree about
+// where a comment or a broken declaration ends, and urdfdom read a robot with
+// a '%' that tinyxml2 took for part of an unterminated <?xml ...?> (found by
+// fuzzing). Only a ban of every '%' holds whatever urdfdom's reader makes of it.
+void checkNoPercentInText(const std::string& xml, const std::string& origin) {
+  const size_t at = xml.find('%');
+  if (at == std::string::npos) return;
+  const int line = 1 + static_cast<int>(std::count(xml.begin(), xml.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+  throw InputError({origin, line}, "a '%' outside any attribute (in a comment or broken markup), which pronk refuses "
+                                   "anywhere: urdfdom prints parts of the file as a printf format, and XML readers "
+                                   "may disagree about where a comment ends");
 }
 
 // Mass properties of `add`, whose frame sits at `pose` in the body, merged into `into`.
@@ -539,6 +553,7 @@ RobotDescription parseUrdf(const std::string& xml, const std::string& origin, co
   const LineIndex lines = indexLines(doc);
   checkUrdfNumbers(*doc.FirstChildElement("robot"), origin);
   checkNoPercentSign(*doc.FirstChildElement("robot"), origin);
+  checkNoPercentInText(xml, origin);
   // A URDF is a tree: a link that is the child of two joints closes a loop,
   // which urdfdom accepts and the recursive build would follow forever.
   struct Inboard {
