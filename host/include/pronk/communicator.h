@@ -43,9 +43,6 @@ class Communicator {
   // error must not leave the others waiting in a collective for ever.
   [[noreturn]] void abort(int status) const;
 
-  // Whether this build can run distributed at all (PRONK_WITH_MPI).
-  static bool built_with_mpi();
-
  private:
   Communicator();
   int rank_ = 0;

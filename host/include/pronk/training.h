@@ -106,9 +106,6 @@ struct TrainingOutcome {
   long long jumps = 0;
   double wall_s = 0;
   std::string policy_path, checkpoint_path, log_path;
-  // A rank other than 0 under mpirun: it rolled out its share of each batch;
-  // rank 0 wrote everything.
-  bool rolled_out_only = false;
 };
 
 using TrainingProgress = std::function<void(const TrainingIteration& row)>;
@@ -121,6 +118,8 @@ std::string checkpointPathFor(const std::string& policy_path);
 // each row is final (iteration 0 included). When *stop becomes true the run
 // ends after the running episodes: the interrupted iteration is dropped, the
 // checkpoint and the policy are written as of the last whole iteration.
+// Under mpirun a rank other than 0 only rolls out its share of each batch
+// until rank 0 ends the run, and gets an empty outcome (docs/training.md).
 TrainingOutcome trainPolicy(const Scenario& scenario, const PluginRegistry& registry, const TrainingRunOptions& options,
                             const TrainingProgress& on_row, const std::atomic<bool>* stop = nullptr);
 

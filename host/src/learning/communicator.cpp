@@ -52,14 +52,6 @@ Communicator& Communicator::world() {
   return instance;
 }
 
-bool Communicator::built_with_mpi() {
-#ifdef PRONK_WITH_MPI
-  return true;
-#else
-  return false;
-#endif
-}
-
 Communicator::Communicator() {
 #ifdef PRONK_WITH_MPI
   static MpiSession session;

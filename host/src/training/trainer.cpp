@@ -323,10 +323,28 @@ class Trainer {
     return b;
   }
 
+  // The oversampling pool as a checkpoint and a round carry it, and back.
   json hardTargetsJson() const {
     json hard = json::array();
     for (const TargetSpec& t : hard_) hard.push_back({t.x, t.y, t.z, t.yaw});
     return hard;
+  }
+  void readHardTargets(const training_files::JsonReader& read, const json& holder) {
+    hard_.clear();
+    const json& hard = read.at(holder, "hard_targets");
+    if (!hard.is_array()) read.fail("hard_targets", "expected an array of [x, y, z, yaw]");
+    for (const json& h : hard) {
+      if (!h.is_array() || h.size() != 4 || !std::all_of(h.begin(), h.end(), [](const json& v) { return v.is_number(); })) {
+        read.fail("hard_targets", "expected an array of [x, y, z, yaw]");
+      }
+      TargetSpec t;
+      t.x = h[0].get<double>();
+      t.y = h[1].get<double>();
+      t.z = h[2].get<double>();
+      t.yaw = h[3].get<double>();
+      t.where = spec_.region_where;
+      hard_.push_back(t);
+    }
   }
 
   // Iteration k: false when stopped before its update (nothing of it is kept).
@@ -454,7 +472,7 @@ class Trainer {
     if (!comm.distributed()) {
       const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
         if (stopRequested()) pool_->stop();
-        on_case(caseResultOf(r, state_->draws ? &(*state_->draws)[r.index] : nullptr));
+        on_case(caseResultOf(r, nullptr));  // the draw stays where the policy wrote it
       });
       return delivered == cases.size();
     }
@@ -465,7 +483,7 @@ class Trainer {
     std::iota(all.begin(), all.end(), size_t{0});
     pool_->run(cases, casesOfRank(all, comm.rank(), comm.size()), [&](EpisodeRecord& r) {
       if (stopRequested()) pool_->stop();
-      results[r.index] = caseResultOf(r, state_->draws ? &(*state_->draws)[r.index] : nullptr);
+      results[r.index] = caseResultOf(r, nullptr);  // rank 0's own draws are in place
       have[r.index] = true;
     });
     const std::vector<std::string> parts = comm.gather("[]");
@@ -509,16 +527,7 @@ class Trainer {
       if (kind == "iterate") {
         target_rng_.setState(read.rng(round, "target_rng"));
         noise_rng_.setState(read.rng(round, "noise_rng"));
-        hard_.clear();
-        for (const json& h : read.at(round, "hard_targets")) {
-          TargetSpec t;
-          t.x = h.at(0).get<double>();
-          t.y = h.at(1).get<double>();
-          t.z = h.at(2).get<double>();
-          t.yaw = h.at(3).get<double>();
-          t.where = spec_.region_where;
-          hard_.push_back(t);
-        }
+        readHardTargets(read, round);
         batch = drawBatch(static_cast<int>(read.integer(round, "iteration")));
         cases = &batch->cases;
         draws.resize(cases->size());
@@ -704,23 +713,7 @@ class Trainer {
     if (learner_->observationSize() != observation_size_ || learner_->actionSize() != action_size_) {
       read.fail("ppo", "the networks' sizes do not fit environment '" + factory_name_ + "'");
     }
-    if (spec_.oversample > 0) {
-      hard_.clear();
-      const json& hard = read.at(c, "hard_targets");
-      if (!hard.is_array()) read.fail("hard_targets", "expected an array of [x, y, z, yaw]");
-      for (const json& h : hard) {
-        if (!h.is_array() || h.size() != 4 || !std::all_of(h.begin(), h.end(), [](const json& v) { return v.is_number(); })) {
-          read.fail("hard_targets", "expected an array of [x, y, z, yaw]");
-        }
-        TargetSpec t;
-        t.x = h[0].get<double>();
-        t.y = h[1].get<double>();
-        t.z = h[2].get<double>();
-        t.yaw = h[3].get<double>();
-        t.where = spec_.region_where;
-        hard_.push_back(t);
-      }
-    }
+    if (spec_.oversample > 0) readHardTargets(read, c);
     if (spec_.hindsight) {
       try {
         hindsight_.fromJson(read.at(c, "hindsight"), observation_size_, action_size_);
@@ -830,9 +823,7 @@ TrainingOutcome trainPolicy(const Scenario& scenario, const PluginRegistry& regi
   Trainer trainer(scenario, registry, options, on_row, stop);
   if (!Communicator::world().root()) {
     trainer.serve();
-    TrainingOutcome worker;
-    worker.rolled_out_only = true;
-    return worker;
+    return {};  // rank 0 reports the run
   }
   TrainingOutcome outcome = trainer.run();
   Trainer::endRounds();
