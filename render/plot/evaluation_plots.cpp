@@ -82,9 +82,9 @@ std::string regionMap(const std::vector<JumpRow>& rows, const PlotContext& c, co
   for (const JumpRow& r : rows) {
     x0 = std::min(x0, r.target_x), x1 = std::max(x1, r.target_x);
     y0 = std::min(y0, r.target_y), y1 = std::max(y1, r.target_y);
-    const double e = r.landed() && std::isfinite(r.error_xy) ? std::max(r.error_xy, 1e-4) : 1.0;
+    const double e = r.landed() && std::isfinite(r.error) ? std::max(r.error, 1e-4) : 1.0;
     all.push_back({r.target_x, r.target_y, std::log10(std::min(e, 1.0))});
-    if (r.landed()) landed.rows.push_back({r.target_x, r.target_y, std::max(r.error_xy, 1e-4)});
+    if (r.landed()) landed.rows.push_back({r.target_x, r.target_y, std::max(r.error, 1e-4)});
     else (r.status == "rejected" ? refused : failed).rows.push_back({r.target_x, r.target_y});
   }
   failed.title = "failed (" + std::to_string(failed.rows.size()) + ")";
@@ -185,7 +185,7 @@ std::string heightMaps(const std::vector<JumpRow>& rows, const PlotContext& c, c
   for (const JumpRow& r : rows) {
     Cell& cell = cells[{std::lround(r.target_x * 1000), std::lround(r.target_y * 1000)}];
     cell.x = r.target_x, cell.y = r.target_y;
-    const bool good = r.landed() && r.error_xy <= c.radius;
+    const bool good = r.landed() && r.error <= c.radius;
     if (r.target_z > 0) {
       cell.tried_up = true;
       zmax = std::max(zmax, r.target_z);

@@ -48,7 +48,7 @@ std::vector<JumpRow> flatRegion(size_t n) {
     r.status = d > 1.1 ? "failed" : (i % 17 == 0 ? "rejected" : "ok");
     if (r.status == "ok") {
       r.landed_x = r.target_x * (1 - 0.15 * d), r.landed_y = r.target_y;
-      r.error_xy = std::abs(r.target_x) * 0.15 * d, r.error_yaw_deg = 1, r.standing = true;
+      r.error_xy = r.error = std::abs(r.target_x) * 0.15 * d, r.error_yaw_deg = 1, r.standing = true;
     }
     rows.push_back(r);
   }

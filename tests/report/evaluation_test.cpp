@@ -23,7 +23,7 @@ JumpRow row(size_t index, const std::string& status, double tx, double lx, doubl
   if (status == "ok" || status == "missed") {
     r.landed_x = lx;
     r.landed_y = ly;
-    r.error_xy = std::hypot(lx - tx, ly);
+    r.error_xy = r.error = std::hypot(lx - tx, ly);
     r.error_yaw_deg = 2.0 * index;
     r.standing = true;
   }

@@ -50,6 +50,23 @@ TEST(JumpLanding, AStandingLandingIsMeasuredInTheStartFrame) {
   EXPECT_NEAR(l.tilt, 0, 1e-12);
 }
 
+TEST(JumpLanding, ATargetWithAHeightCountsTheFeetsHeightAsThePaperDoes) {
+  // The feet stand 0.15 m higher at the end (the one in the air is not counted);
+  // the target is 0.2 m up: the error is 3-D, 0.05 m short in z, 0.02 / 0.01 in xy.
+  Trace t = jump(Eigen::Vector3d(1.38, 2.01, 0.45), Eigen::Quaterniond::Identity(), {1, 1, 1, 0});
+  t.samples.front().foot_position.assign(4, Eigen::Vector3d(0, 0, 0.02));
+  t.samples.back().foot_position.assign(4, Eigen::Vector3d(0, 0, 0.17));
+  t.samples.back().foot_position[3].z() = 0.4;
+  TargetSpec up = forward(0.4);
+  up.z = 0.2;
+  const Landing l = landingOf(t, up);
+  EXPECT_NEAR(l.height, 0.15, 1e-12);
+  EXPECT_NEAR(l.error_xy, std::hypot(0.02, 0.01), 1e-12);
+  EXPECT_NEAR(l.error, std::sqrt(0.02 * 0.02 + 0.01 * 0.01 + 0.05 * 0.05), 1e-12);
+  // Without a height the error is the horizontal one, whatever the feet did.
+  EXPECT_EQ(landingOf(t, forward(0.4)).error, l.error_xy);
+}
+
 TEST(JumpLanding, AFootInTheAirOrAModerateTiltIsALandingThatIsNotStanding) {
   const Landing three_feet = landingOf(jump(Eigen::Vector3d(1.4, 2, 0.3), tilted(10), {1, 1, 0, 1}), forward(0.4));
   EXPECT_FALSE(three_feet.standing);

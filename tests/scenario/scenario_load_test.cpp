@@ -184,7 +184,7 @@ TEST(Training, ShippedTrainingFilesCoverThePapersRegion) {
     const Scenario s = loadScenario((kSource / "scenarios" / "train" / (robot + "_omni.xml")).string());
     ASSERT_TRUE(s.training.has_value());
     ASSERT_TRUE(s.environment.has_value());
-    EXPECT_TRUE(s.step_platforms);
+    EXPECT_EQ(s.step_platforms, pronk::StepPlatforms::apex);  // the paper's test terrain
     const pronk::TrainingSpec& t = *s.training;
     EXPECT_EQ(t.x.min, -0.6);
     EXPECT_EQ(t.x.max, 1.2);
@@ -194,8 +194,8 @@ TEST(Training, ShippedTrainingFilesCoverThePapersRegion) {
     EXPECT_EQ(t.z.max, 0.4);
     EXPECT_NEAR(t.yaw.min, -kPi / 2, 1e-12);
     EXPECT_NEAR(t.yaw.max, kPi / 2, 1e-12);
-    EXPECT_EQ(t.actor_hidden_sizes, (std::vector<int>{512, 256, 128}));
-    EXPECT_TRUE(t.residual);
+    EXPECT_TRUE(t.aim);  // the aim correction of go1_flat_aim.xml, over the region with heights
+    EXPECT_TRUE(t.hindsight);
     EXPECT_TRUE(t.critic_warmup);
     EXPECT_FALSE(t.mirror);
   }
@@ -524,7 +524,7 @@ TEST(StepPlatforms, UpAndDownTargetsGetTheirPlatformWithTheEdgeHalfway) {
                                                  "<target name=\"down\" x=\"-0.6\" z=\"-0.1\"/>"
                                                  "<target name=\"flat\" x=\"0.4\"/></targets>\n"));
   const Scenario s = loadScenario(file.string());
-  ASSERT_TRUE(s.step_platforms);
+  ASSERT_EQ(s.step_platforms, pronk::StepPlatforms::edge);
   const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
   ASSERT_EQ(cases.size(), 3u);
   // Up, 0.5 m away along (0.6, 0.8): the box is 0.2 high, turned to the jump
@@ -550,6 +550,45 @@ TEST(StepPlatforms, UpAndDownTargetsGetTheirPlatformWithTheEdgeHalfway) {
   EXPECT_NEAR(start.position[0], s.platform.base_position[0] + 0.25, 1e-12);
   // A flat target adds nothing.
   EXPECT_EQ(pronk::applyCase(s, cases[2]).terrain.size(), s.terrain.size());
+}
+
+TEST(StepPlatforms, ApexPlatformsAddNoBoxAndSitOnTheTargetInTheStartsHeading) {
+  TempTree tree;
+  const fs::path file = tree.write(
+      "apex.xml", scenarioWith(tinyPlatform() + "<terrain ground_height=\"0.1\" step_platforms=\"apex\"/>\n"
+                                                "<targets><target name=\"up\" x=\"0.3\" y=\"0.4\" z=\"0.2\" yaw=\"0.5\"/>"
+                                                "<target name=\"hop\" x=\"0\" z=\"0.1\"/>"
+                                                "<target name=\"flat\" x=\"0.4\"/></targets>\n"));
+  Scenario s = loadScenario(file.string());
+  ASSERT_EQ(s.step_platforms, pronk::StepPlatforms::apex);
+  s.platform.base_position = {1.0, 2.0, 0.0};
+  s.platform.base_yaw = M_PI / 2;
+  const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
+  const Scenario up = pronk::applyCase(s, cases[0]);
+  EXPECT_EQ(up.terrain.size(), s.terrain.size());
+  ASSERT_TRUE(up.apex_platform.has_value());
+  // Turned a quarter: the target's x runs along the world's y, its y against x.
+  EXPECT_NEAR(up.apex_platform->x, 1.0 - 0.4, 1e-12);
+  EXPECT_NEAR(up.apex_platform->y, 2.0 + 0.3, 1e-12);
+  EXPECT_NEAR(up.apex_platform->yaw, M_PI / 2 + 0.5, 1e-12);
+  EXPECT_NEAR(up.apex_platform->top, 0.3, 1e-12);
+  EXPECT_NEAR(up.apex_platform->floor, 0.1 - 0.5, 1e-12);
+  // Straight above the start is fine: there is no edge to place.
+  EXPECT_TRUE(pronk::applyCase(s, cases[1]).apex_platform.has_value());
+  EXPECT_FALSE(pronk::applyCase(s, cases[2]).apex_platform.has_value());
+}
+
+TEST(StepPlatforms, AnUnknownKindIsRefusedWithItsLine) {
+  TempTree tree;
+  const fs::path file = tree.write("bad.xml", scenarioWith(tinyPlatform() + "<terrain step_platforms=\"teleport\"/>\n"));
+  try {
+    loadScenario(file.string());
+    FAIL() << "expected an InputError";
+  } catch (const pronk::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(file.string() + ":", 0), 0u) << message;
+    EXPECT_NE(message.find("apex"), std::string::npos) << message;
+  }
 }
 
 TEST(StepPlatforms, ATargetStraightAboveTheStartHasNoRoomForAnEdge) {

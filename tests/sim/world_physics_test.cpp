@@ -8,6 +8,7 @@
 #include "go1_fixture.h"
 #include "pronk/controller.h"
 #include "pronk/episode.h"
+#include "pronk/landing.h"
 #include "pronk/world.h"
 
 namespace pronk {
@@ -178,6 +179,39 @@ TEST(WorldPhysics, StandingRobotHoldsTheForwardKinematicsHeight) {
     EXPECT_NEAR(s.foot_force[f].z(), world.totalMass() * 9.81 / 4, 0.15 * world.totalMass() * 9.81 / 4);
   }
   EXPECT_NEAR(total, world.totalMass() * 9.81, 0.01 * world.totalMass() * 9.81);
+}
+
+// The paper's apex platform: a robot tossed straight up (legs held) rises
+// v^2 / 2g = 0.115 m; at its apex the platform appears at the target's height
+// when the soles clear it, else 5 cm under the lowest sole; a robot that misses
+// it falls to the floor (the paper's: 0.5 m under the take-off surface).
+TEST(WorldPhysics, TheApexPlatformAppearsUnderTheFeetAtTheTopOfTheFlight) {
+  struct Case {
+    double x, top, floor, height;  // platform centre x from the start, asked top, floor, the feet's height at the end
+  };
+  const double rise = 1.5 * 1.5 / (2 * 9.81);
+  for (const Case& c : {Case{0, 0.3, -0.5, rise - 0.05}, Case{0, -0.2, -0.5, -0.2}, Case{3.0, -0.1, -0.2, -0.2}}) {
+    World world = makeWorld(robotUrdf("go1"));
+    auto controller = makeStandController(world, nullptr);
+    const double sole0 = world.state().foot_position[0].z() - world.footRadius(0);
+    world.setBaseVelocity(Eigen::Vector3d(0, 0, 1.5), Eigen::Vector3d::Zero());
+    EpisodeOptions options;
+    options.duration = 1.2;
+    ApexPlatform apex;
+    apex.x = world.state().base_position.x() + c.x;
+    apex.y = world.state().base_position.y();
+    apex.top = c.top;
+    apex.floor = c.floor;
+    options.apex_platform = apex;
+    const EpisodeResult r = runEpisode(world, *controller, options);
+    ASSERT_FALSE(r.failure) << r.failure->detail << " (top " << c.top << " at x " << c.x << ")";
+    const TraceEvent* placed = r.trace.findEvent("apex_platform");
+    ASSERT_NE(placed, nullptr);
+    EXPECT_NEAR(placed->time, 1.5 / 9.81, 0.01);
+    const Landing l = landingOf(r.trace, TargetSpec{});
+    EXPECT_NEAR(l.height, c.height - sole0, 0.01) << "top " << c.top << " at x " << c.x;
+    EXPECT_TRUE(l.standing);
+  }
 }
 
 TEST(WorldPhysics, AnUnreportedTrunkMassIsCarriedButNotTold) {

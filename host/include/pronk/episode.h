@@ -28,6 +28,11 @@ struct EpisodeOptions {
   // long (s); what would follow moves the landing by under a millimetre
   // (docs/performance.md).
   double end_at_rest = 0;
+  // The paper's test terrain for a target with a height: once the trunk's
+  // centre of mass starts to fall after the lift-off, the terrain becomes the
+  // ground plane at `floor` plus this platform (ApexPlatform); the trace gets
+  // an "apex_platform" event with the top's height.
+  std::optional<ApexPlatform> apex_platform;
 };
 
 inline constexpr double kRestSpeed = 0.05;  // m/s, CoM

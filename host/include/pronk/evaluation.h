@@ -27,6 +27,8 @@ struct JumpRow {
   double target_x = 0, target_y = 0, target_z = 0, target_yaw = 0;
   double landed_x = NAN, landed_y = NAN, landed_z = NAN, landed_yaw = NAN;
   double error_xy = NAN;       // m, horizontal distance from the target
+  double landed_height = NAN;  // m, the feet's surface at the end, from the take-off one (Landing::height)
+  double error = NAN;          // m, as the paper counts it: error_xy, 3-D for a target with a height (Landing::error)
   double error_yaw_deg = NAN;  // |wrapped heading error|
   std::string status;          // ok | missed | rejected | failed
   std::string reason;          // why, for every status but ok

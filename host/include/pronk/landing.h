@@ -22,6 +22,12 @@ struct Landing {
   Eigen::Vector3d displacement = Eigen::Vector3d::Constant(NAN);  // trunk, in the start heading frame
   double yaw = NAN;        // rad, heading change
   double error_xy = NAN;   // m
+  // The height of the surface the feet stand on at the end, relative to the
+  // one they took off from (the mean of the feet down, m), and the landing
+  // error as the paper counts it: error_xy for a target without height; for
+  // one with a height, 3-D, the trunk's xy and the feet's height.
+  double height = NAN;
+  double error = NAN;
   double error_yaw = NAN;  // rad, |wrapped|
   double tilt = NAN;       // rad, trunk z axis from the vertical at the end
   bool standing = false;

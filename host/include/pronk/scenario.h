@@ -132,6 +132,24 @@ struct TerrainBox {
   SourceLocation where;
 };
 
+enum class StepPlatforms { none, edge, apex };
+
+// The paper's terrain for up and down jumps (reference-implementation.md,
+// section 6): the robot takes off from a surface with no edge near it; at the
+// apex of its flight a 2 m x 2 m platform, centred on the target and turned to
+// its heading, appears with its top at the target's height, or lower, 5 cm
+// under the lowest foot, when the feet do not clear the target height, so that
+// no jump ever meets a platform's side. Missing the platform means falling to
+// the ground 0.5 m below the start surface.
+struct ApexPlatform {
+  double x = 0, y = 0;     // world, m: the target
+  double yaw = 0;          // rad, the target's world heading
+  double top = 0;          // world z of the target's surface, m
+  double floor = 0;        // world z of the ground plane once the platform appears, m
+  double size = 2.0;       // m, square
+  double clearance = 0.05; // m under the lowest foot's sole when the feet do not clear `top`
+};
+
 // A target pose relative to the start (x forward, y left, z up, of the
 // robot's initial heading), angles in rad.
 struct TargetSpec {
@@ -268,10 +286,13 @@ struct Scenario {
   std::vector<TerrainBox> terrain;
   double ground_height = 0;      // m, the ground plane z
   bool ground = true;            // false: no ground plane (only boxes)
-  // <terrain step_platforms="true">: every case whose target has z != 0 gets a
-  // platform of height |z| (applyCase): a landing platform for up targets, a
-  // start platform for down targets.
-  bool step_platforms = false;
+  // <terrain step_platforms="...">: how a case whose target has z != 0 gets its
+  // height (applyCase). "true" (edge): a box of height |z|, a landing platform
+  // for up targets, a start platform for down targets. "apex": the paper's test
+  // terrain, a landing platform that appears under the robot at the apex of its
+  // flight (ApexPlatform).
+  StepPlatforms step_platforms = StepPlatforms::none;
+  std::optional<ApexPlatform> apex_platform;   // set by applyCase for an apex case
   std::optional<EnvironmentSpec> environment;  // with it, <controller> is optional
   std::vector<TargetSpec> targets;
   std::vector<SweepSpec> sweeps;
@@ -325,12 +346,13 @@ std::vector<EpisodeCase> targetCases(const Scenario& scenario);
 // Throws InputError naming the known sweeps for an unknown name.
 std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string& name);
 // The scenario with a case's non-target assignments applied and, with
-// step_platforms, the case's platform added: a box |z| high, turned to the jump
+// step_platforms="true", the case's platform added: a box |z| high, turned to the jump
 // direction, whose edge lies halfway between the start and the target (so the
 // feet of both stances are equally far from it), 1.2 m wide. An up target's
 // platform runs from the edge to 0.6 m beyond the target; a down target's start
 // platform from 0.8 m behind the start to the edge, and the robot starts on it.
 // A target straight above or below the start has no edge to put: InputError.
+// With step_platforms="apex", apex_platform set instead (no box is added).
 Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode);
 
 // The only major version of the format this build reads.

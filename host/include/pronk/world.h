@@ -66,6 +66,10 @@ class World {
   // from (robot, gains, damping, contact law) stays; the terrain is geometry
   // that the contact and the probes read each step, so it may change.
   void restart(const Vec3& base_position, double base_yaw, Terrain terrain);
+  // Replaces the terrain without touching the robot's state, for terrain that
+  // changes during an episode (an apex platform). The contact reads it from the
+  // next step on; a foot in contact then meets the new surface under it.
+  void replaceTerrain(Terrain terrain);
   // Sets the initial pose explicitly: base position and yaw, joint positions.
   void resetTo(const Eigen::Vector3d& base_position, double base_yaw, const Eigen::VectorXd& q,
                bool place_on_ground);

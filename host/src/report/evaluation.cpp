@@ -88,6 +88,8 @@ JumpRow jumpRowOf(const EpisodeRecord& r, const JumpOutcome& o) {
   row.landed_z = o.landing.displacement.z();
   row.landed_yaw = o.landing.yaw;
   row.error_xy = o.landing.error_xy;
+  row.landed_height = o.landing.height;
+  row.error = o.landing.error;
   row.error_yaw_deg = o.landing.error_yaw * kDeg;
   row.status = o.status;
   row.reason = o.reason;
@@ -109,6 +111,8 @@ nlohmann::json toJson(const JumpRow& row) {
            {{"x", number(row.landed_x)}, {"y", number(row.landed_y)}, {"z", number(row.landed_z)},
             {"yaw", number(row.landed_yaw)}}},
           {"error_xy", number(row.error_xy)},
+          {"landed_height", number(row.landed_height)},
+          {"error", number(row.error)},
           {"error_yaw_deg", number(row.error_yaw_deg)},
           {"status", row.status},
           {"reason", row.reason},
@@ -137,6 +141,10 @@ JumpRow jumpRowFromJson(const nlohmann::json& j, const std::string& where) {
   row.landed_z = numberOf(*landed, "z", where);
   row.landed_yaw = numberOf(*landed, "yaw", where);
   row.error_xy = numberOf(j, "error_xy", where);
+  // Rows written before the paper's 3-D error had only the horizontal one,
+  // which is the same for targets without a height.
+  row.landed_height = j.contains("landed_height") ? numberOf(j, "landed_height", where) : NAN;
+  row.error = j.contains("error") ? numberOf(j, "error", where) : row.target_z == 0 ? row.error_xy : NAN;
   row.error_yaw_deg = numberOf(j, "error_yaw_deg", where);
   row.status = textOf(j, "status", where);
   if (row.status != "ok" && row.status != "missed" && row.status != "rejected" && row.status != "failed") {
@@ -171,8 +179,8 @@ SetSummary summarize(const std::vector<JumpRow>& rows, double radius) {
     if (!r.landed()) continue;
     ++s.landed;
     if (r.standing) ++s.standing;
-    errors.push_back(r.error_xy);
-    if (r.error_xy <= radius) ++s.within;
+    errors.push_back(r.error);
+    if (r.error <= radius) ++s.within;
     // Signed errors along the start heading's x and y (the paper's e_x, e_y).
     ex.push_back(r.landed_x - r.target_x);
     ey.push_back(r.landed_y - r.target_y);
@@ -226,7 +234,7 @@ void writeJumpsCsv(const std::vector<JumpRow>& rows, const std::string& path) {
   for (const JumpRow& r : rows) {
     csv += std::to_string(r.index) + ',' + csvText(r.label) + ',';
     for (double v : {r.target_x, r.target_y, r.target_z, r.target_yaw * kDeg, r.landed_x, r.landed_y, r.landed_z,
-                     r.landed_yaw * kDeg, r.error_xy, r.error_yaw_deg}) {
+                     r.landed_yaw * kDeg, r.error_xy, r.landed_height, r.error, r.error_yaw_deg}) {
       csv += csvCell(v) + ',';
     }
     csv += r.status + ',' + (r.standing ? "1" : "0") + ',' + csvCell(r.simulated_s) + ',' + csvCell(r.wall_s) + ',';

@@ -75,7 +75,7 @@ std::vector<ExpectationResult> judgeOne(const ExpectSpec& e, const std::vector<J
   };
   if (e.max_error) {
     out.push_back(everyJump(e, rows, "max_error <= " + cm(*e.max_error), *e.max_error,
-                            [](const JumpRow& r) { return r.error_xy; }, cm));
+                            [](const JumpRow& r) { return r.error; }, cm));
   }
   if (e.max_yaw_error) {
     out.push_back(everyJump(e, rows, "max_yaw_error <= " + format("%.1f deg", *e.max_yaw_error * kDeg),

@@ -33,7 +33,7 @@ std::string statusOf(const EpisodeRecord& r, const Landing& landing) {
   if (r.result.rejected) return "rejected";
   if (r.result.episode.failure || !landing.end_failure.empty()) return "failed";
   const TargetSpec& t = r.episode.target;
-  if (!(landing.error_xy <= t.tolerance_xy.value_or(kDefaultMissRadius)) ||
+  if (!(landing.error <= t.tolerance_xy.value_or(kDefaultMissRadius)) ||
       (t.tolerance_yaw && !(landing.error_yaw <= *t.tolerance_yaw))) {
     return "missed";
   }
@@ -49,11 +49,11 @@ std::string reasonOf(const EpisodeRecord& r, const JumpOutcome& o) {
     const TargetSpec& t = r.episode.target;
     if (t.tolerance_xy || t.tolerance_yaw) {
       return fmt::format("error {:.1f} cm / {:.1f} deg beyond the tolerance {:.1f} cm / {:.1f} deg",
-                         100 * o.landing.error_xy, o.landing.error_yaw * kDeg,
+                         100 * o.landing.error, o.landing.error_yaw * kDeg,
                          100 * t.tolerance_xy.value_or(kDefaultMissRadius), t.tolerance_yaw.value_or(INFINITY) * kDeg);
     }
     return fmt::format("error {:.1f} cm beyond {:.0f} cm (the target sets no tolerance_xy: the paper's success radius)",
-                       100 * o.landing.error_xy, 100 * kDefaultMissRadius);
+                       100 * o.landing.error, 100 * kDefaultMissRadius);
   }
   return "";
 }
@@ -109,7 +109,7 @@ void JumpStatistics::add(const EpisodeRecord& r, const JumpOutcome& o) {
   if (o.status == "rejected") ++rejected;
   if (o.status == "missed") ++missed;
   if (o.status == "ok" || o.status == "missed") {
-    errors.push_back(o.landing.error_xy);
+    errors.push_back(o.landing.error);
     yaw_errors_deg.push_back(o.landing.error_yaw * kDeg);
     if (o.landing.standing) ++standing;
     if (const TraceEvent* rest = r.result.episode.trace.findEvent("at_rest")) rest_times.push_back(rest->time);
@@ -193,6 +193,8 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
                   {"z", number(l.displacement.z())},
                   {"yaw", number(l.yaw)}};
   j["error_xy"] = number(l.error_xy);
+  j["landed_height"] = number(l.height);
+  j["error"] = number(l.error);
   j["error_yaw_deg"] = number(l.error_yaw * kDeg);
   j["status"] = o.status;
   j["failed"] = o.status == "failed";
@@ -238,7 +240,7 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
   auto ev = [&](const char* name) { return csvCell(event(trace, name) ? event(trace, name)->time : NAN); };
   std::string row = csvText(r.episode.label) + ',';
   for (double v : {t.x, t.y, t.z, t.yaw, l.displacement.x(), l.displacement.y(), l.displacement.z(), l.yaw, l.error_xy,
-                   l.error_yaw * kDeg}) {
+                   l.height, l.error, l.error_yaw * kDeg}) {
     row += csvCell(v) + ',';
   }
   row += o.status + ',' + csvCell(r.result.reward) + ',' + ev("lift_off") + ',' + ev("touchdown") + ',' + ev("at_rest") + ',';
@@ -252,7 +254,8 @@ void JumpResultsFiles::write(const std::string& dir) const {
   const nlohmann::json document = {{"format", "pronk-results"}, {"version", 2}, {"run", run_}, {"jumps", json_}};
   replaceFileAtomically((fs::path(dir) / "results.json").string(), document.dump(2) + "\n", "results file");
   std::string csv =
-      "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,error_yaw_deg,"
+      "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,landed_height,error,"
+      "error_yaw_deg,"
       "status,reward,lift_off,touchdown,at_rest,";
   for (const MetricSpec* spec : tableColumns(schema_)) csv += spec->name + ',';
   csv += "ended_standing,reason\n" + csv_;

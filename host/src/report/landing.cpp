@@ -27,6 +27,19 @@ std::string endFailure(const TraceSample& end, double tilt) {
   return "";
 }
 
+// Mean height of the feet on the ground (of all feet when none is): the
+// surface they stand on, up to the sole's radius that cancels in differences.
+double feetHeight(const TraceSample& s) {
+  double sum = 0, all = 0;
+  int down = 0;
+  for (size_t f = 0; f < s.foot_position.size(); ++f) {
+    all += s.foot_position[f].z();
+    if (f < s.foot_in_contact.size() && s.foot_in_contact[f]) sum += s.foot_position[f].z(), ++down;
+  }
+  if (down > 0) return sum / down;
+  return s.foot_position.empty() ? NAN : all / double(s.foot_position.size());
+}
+
 }  // namespace
 
 double yawOf(const Eigen::Vector4d& q_wxyz) {
@@ -45,6 +58,8 @@ Landing landingOf(const Trace& trace, const TargetSpec& target) {
   l.yaw = wrap(yawOf(b.base_quaternion) - yaw0);
   l.error_xy = (l.displacement.head<2>() - Eigen::Vector2d(target.x, target.y)).norm();
   l.error_yaw = std::abs(wrap(l.yaw - target.yaw));
+  l.height = feetHeight(b) - feetHeight(a);
+  l.error = target.z == 0 ? l.error_xy : std::hypot(l.error_xy, l.height - target.z);
   const Eigen::Quaterniond q(b.base_quaternion(0), b.base_quaternion(1), b.base_quaternion(2), b.base_quaternion(3));
   l.tilt = std::acos(std::clamp(q.normalized().toRotationMatrix()(2, 2), -1.0, 1.0));
   bool all_down = !b.foot_in_contact.empty();

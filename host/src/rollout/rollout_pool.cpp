@@ -60,6 +60,7 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
   options.record_samples = options_.record_samples;
   options.record_body_poses = options_.record_body_poses;
   options.end_at_rest = options_.end_at_rest;
+  options.apex_platform = s.apex_platform;
   const TargetSpec& t = episode.target;
   try {
     record.result = runEnvironmentEpisode(*worker.world, *setup_.factory, setup_.origin, setup_.params,

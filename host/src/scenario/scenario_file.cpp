@@ -267,10 +267,10 @@ void checkTraining(const Scenario& scenario) {
     throw InputError(t.where, "<training>: needs an <environment> (the task the policy is trained on)");
   }
   const bool heights = t.z.min != 0 || t.z.max != 0;
-  if (heights && !scenario.step_platforms) {
+  if (heights && scenario.step_platforms == StepPlatforms::none) {
     throw InputError(t.region_where, "<region>: z spans [" + scenario_file::formatNumber(t.z.min) + ", " +
                                          scenario_file::formatNumber(t.z.max) +
-                                         "] m: targets with heights need <terrain step_platforms=\"true\">");
+                                         "] m: targets with heights need <terrain step_platforms=\"true\"> or \"apex\"");
   }
   // A target with a height needs its platform's edge between start and target.
   const double far_x = std::max(std::abs(t.x.min), std::abs(t.x.max));

@@ -125,6 +125,7 @@ constexpr double kPlatformWidth = 1.2;     // m across the jump direction
 constexpr double kPlatformBeyond = 0.6;    // m past an up target
 constexpr double kPlatformBehind = 0.8;    // m behind a down target's start
 constexpr double kLeastEdgeDistance = 0.05;  // m: a target closer than twice this has no edge
+constexpr double kApexFloorDrop = 0.5;       // m: the paper's ground under its take-off platform
 
 // The case's up or down platform (Scenario::step_platforms).
 void addStepPlatform(Scenario& s, const EpisodeCase& episode) {
@@ -156,11 +157,29 @@ void addStepPlatform(Scenario& s, const EpisodeCase& episode) {
   if (t.z < 0 && !p.on_ground) s.platform.base_position[2] += height;
 }
 
+// The case's apex platform (Scenario::step_platforms == apex): placed at the
+// target in the start's heading frame; the robot takes off from the surface it
+// stands on, so the target's height is relative to the ground plane.
+void setApexPlatform(Scenario& s, const EpisodeCase& episode) {
+  const TargetSpec& t = episode.target;
+  if (std::abs(t.z) < 1e-9) return;
+  const PlatformSpec& p = s.platform;
+  const double c = std::cos(p.base_yaw), si = std::sin(p.base_yaw);
+  ApexPlatform a;
+  a.x = p.base_position[0] + c * t.x - si * t.y;
+  a.y = p.base_position[1] + si * t.x + c * t.y;
+  a.yaw = p.base_yaw + t.yaw;
+  a.top = s.ground_height + t.z;
+  a.floor = s.ground_height - kApexFloorDrop;
+  s.apex_platform = a;
+}
+
 }  // namespace
 
 Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode) {
   Scenario s = scenario;
-  if (s.step_platforms) addStepPlatform(s, episode);
+  if (s.step_platforms == StepPlatforms::edge) addStepPlatform(s, episode);
+  if (s.step_platforms == StepPlatforms::apex) setApexPlatform(s, episode);
   for (const auto& [variable, value] : episode.assignments) {
     if (variable == "platform.trunk_mass_offset") s.platform.trunk_mass_offset = value;
     else if (variable == "platform.unreported_trunk_mass") s.platform.unreported_trunk_mass = value;

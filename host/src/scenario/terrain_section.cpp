@@ -1,5 +1,7 @@
 // <terrain>: the ground plane and static boxes; <targets>: where to jump.
+#include <array>
 #include <limits>
+#include <string_view>
 #include <map>
 
 #include "sections.h"
@@ -24,7 +26,11 @@ void readTerrain(const XMLElement& e, const SourceFile& file, Scenario& scenario
   ElementReader r(e, file);
   scenario.ground = r.boolean("ground", scenario.ground);
   scenario.ground_height = r.number("ground_height", scenario.ground_height);
-  scenario.step_platforms = r.boolean("step_platforms", scenario.step_platforms);
+  static constexpr std::array<std::string_view, 4> kStepPlatforms{"false", "true", "edge", "apex"};
+  const std::string platforms = r.choice("step_platforms", "false", kStepPlatforms);
+  scenario.step_platforms = platforms == "apex"    ? StepPlatforms::apex
+                            : platforms == "false" ? StepPlatforms::none
+                                                   : StepPlatforms::edge;
   r.rejectUnknownAttributes();
   std::map<std::string, int> names;
   for (const XMLElement* k : r.children({"box"})) {

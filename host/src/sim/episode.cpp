@@ -1,7 +1,9 @@
 #include "pronk/episode.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace pronk {
 namespace {
@@ -24,6 +26,25 @@ TraceSample sampleOf(const World& world, const RobotState& s, const Eigen::Vecto
   return out;
 }
 
+// The terrain once the apex platform appears: the world's boxes and the
+// platform, whose top is the target's surface or, when the lowest sole does not
+// clear it, `clearance` below that sole (never below the floor).
+Terrain apexTerrain(const World& world, const ApexPlatform& a, double* top) {
+  const RobotState& s = world.state();
+  double sole = INFINITY;
+  for (int f = 0; f < world.footCount(); ++f) sole = std::min(sole, s.foot_position[f].z() - world.footRadius(f));
+  *top = std::clamp(std::min(a.top, sole - a.clearance), a.floor, a.top);
+  TerrainBox box;
+  box.name = "apex_platform";
+  const double thickness = std::max(*top - a.floor, 0.01);
+  box.size = {a.size, a.size, thickness};
+  box.position = {a.x, a.y, *top - thickness / 2};
+  box.yaw = a.yaw;
+  std::vector<TerrainBox> boxes = world.terrain().boxes();
+  boxes.push_back(box);
+  return Terrain(world.terrain().hasGround(), a.floor, std::move(boxes));
+}
+
 }  // namespace
 
 EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOptions& options) {
@@ -39,6 +60,8 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
   const long ticks = std::lround(options.duration / world.controlPeriod());
   bool was_airborne = false;
   bool landed = false;      // a touchdown after a flight
+  bool lifted_off = false;
+  bool apex_placed = !options.apex_platform;
   double rest_since = NAN;  // when the robot last came to rest
   try {
     controller.reset(world.state());
@@ -51,7 +74,18 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
       // Contact changes of the whole robot: all feet off, then any foot back on.
       bool any_contact = false;
       for (uint8_t c : world.state().foot_in_contact) any_contact = any_contact || c;
-      if (!any_contact && !was_airborne) trace.addEvent(world.time(), "lift_off");
+      if (!any_contact && !was_airborne) {
+        trace.addEvent(world.time(), "lift_off");
+        lifted_off = true;
+      }
+      if (!apex_placed && lifted_off && !any_contact && world.state().com_velocity.z() <= 0) {
+        double top = 0;
+        world.replaceTerrain(apexTerrain(world, *options.apex_platform, &top));
+        char detail[64];
+        std::snprintf(detail, sizeof detail, "top z = %.3f m", top);
+        trace.addEvent(world.time(), "apex_platform", detail);
+        apex_placed = true;
+      }
       if (any_contact && was_airborne) {
         trace.addEvent(world.time(), "touchdown");
         landed = true;

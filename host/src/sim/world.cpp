@@ -357,6 +357,8 @@ void World::restart(const Vec3& base_position, double base_yaw, Terrain terrain)
   reset();
 }
 
+void World::replaceTerrain(Terrain terrain) { impl_->terrain = std::move(terrain); }
+
 void World::resetTo(const Eigen::Vector3d& base_position, double base_yaw, const Eigen::VectorXd& q,
                     bool place_on_ground) {
   Impl& w = *impl_;

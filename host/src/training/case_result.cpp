@@ -80,6 +80,8 @@ json toJson(const CaseResult& c) {
                      {{"displacement", vector(Eigen::VectorXd(l.displacement))},
                       {"yaw", number(l.yaw)},
                       {"error_xy", number(l.error_xy)},
+                      {"height", number(l.height)},
+                      {"error", number(l.error)},
                       {"error_yaw", number(l.error_yaw)},
                       {"tilt", number(l.tilt)},
                       {"standing", l.standing},
@@ -112,6 +114,8 @@ CaseResult caseResultFromJson(const json& j) {
       out.landing.displacement = p;
       out.landing.yaw = numberOf(l.at("yaw"));
       out.landing.error_xy = numberOf(l.at("error_xy"));
+      out.landing.height = numberOf(l.at("height"));
+      out.landing.error = numberOf(l.at("error"));
       out.landing.error_yaw = numberOf(l.at("error_yaw"));
       out.landing.tilt = numberOf(l.at("tilt"));
       out.landing.standing = l.at("standing").get<bool>();

@@ -112,8 +112,8 @@ class FiguresSink {
     if (o.status == "rejected") ++f_.rejected;
     if (o.status == "ok" || o.status == "missed") {
       ++f_.landed;
-      errors_.push_back(o.landing.error_xy);
-      if (o.landing.error_xy <= 0.2) ++within_;
+      errors_.push_back(o.landing.error);
+      if (o.landing.error <= 0.2) ++within_;
     }
     return o;
   }
