@@ -112,4 +112,8 @@ struct BenchOptions {
 // or <prefix>/share/pronk when installed.
 std::string dataDirectory();
 
+// The commit the binary was built from ("-dirty" with changed tracked files,
+// "unknown" outside a git checkout).
+const char* buildCommit();
+
 }  // namespace pronk::cli

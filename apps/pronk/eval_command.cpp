@@ -83,7 +83,7 @@ void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
     if (!r.plot_error.empty()) j["plot_error"] = r.plot_error;
     sets.push_back(j);
   }
-  const nlohmann::json summary = {{"pronk_version", PRONK_VERSION}, {"git_commit", PRONK_GIT_COMMIT},
+  const nlohmann::json summary = {{"pronk_version", PRONK_VERSION}, {"git_commit", buildCommit()},
                                   {"policy", o.policy.empty() ? "(each file's)" : o.policy}, {"sets", sets}};
   replaceFileAtomically((fs::path(o.out_dir) / "summary.json").string(), summary.dump(2) + "\n", "summary file");
 }

@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
       "4 an episode failed (non-foot contact, divergence, controller error), 130 / 143 stopped by SIGINT / SIGTERM.");
   app.set_version_flag("--version", std::string("pronk ") + PRONK_VERSION + ", plugin ABI " +
                                         std::to_string(PRONK_ABI_MAJOR) + "." + std::to_string(PRONK_ABI_MINOR) +
-                                        ", commit " + PRONK_GIT_COMMIT);
+                                        ", commit " + buildCommit());
   // Options of the main command (--plugin) may also follow the subcommand, as
   // docs/plugin-abi.md shows them.
   app.fallthrough();

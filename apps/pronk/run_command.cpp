@@ -117,7 +117,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
     nlohmann::json settings = nlohmann::json::object();  // the controller's parameters the file and --param set
     for (const ParamSetting& p : scenario.platform.controller.params) settings[p.name] = p.value;
     j["run"] = {{"pronk_version", PRONK_VERSION},
-                {"git_commit", PRONK_GIT_COMMIT},
+                {"git_commit", buildCommit()},
                 {"command", common.command_line},
                 {"controller_parameters", settings}};
     j["scenario"] = fs::absolute(options.scenario).string();

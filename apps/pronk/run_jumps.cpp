@@ -95,7 +95,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
 
   // What this run was, for results.json: a motor=dc run must not read like a default one.
   nlohmann::json provenance = {{"pronk_version", PRONK_VERSION},
-                               {"git_commit", PRONK_GIT_COMMIT},
+                               {"git_commit", buildCommit()},
                                {"command", common.command_line},
                                {"scenario", fs::absolute(options.scenario).lexically_normal().string()},
                                {"environment", setup.factory->name},

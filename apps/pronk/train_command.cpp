@@ -2,6 +2,7 @@
 // environment as its <training> element says (the loop is the library's,
 // pronk/training.h); here the options, a progress line per iteration, and
 // SIGINT / SIGTERM turned into a checkpoint.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <optional>
@@ -41,12 +42,28 @@ std::string hms(double seconds) {
   return text;
 }
 
+// The mean of the penalties' sum per jump and the three largest means: what
+// the reward is losing most to.
+void printPenalties(const TrainingIteration& r) {
+  if (!std::isfinite(r.penalty_sum_mean)) return;
+  std::vector<size_t> order;
+  for (size_t i = 0; i < r.penalty_means.size(); ++i)
+    if (std::isfinite(r.penalty_means[i])) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return r.penalty_means[a] > r.penalty_means[b]; });
+  std::printf("  penalties %.2f", r.penalty_sum_mean);
+  for (size_t k = 0; k < order.size() && k < 3; ++k) {
+    std::printf("%s%s %.2f", k == 0 ? " (" : ", ", r.penalty_names[order[k]].c_str(), r.penalty_means[order[k]]);
+  }
+  if (!order.empty()) std::printf(")");
+}
+
 void printRow(const TrainingIteration& r) {
   std::printf("iter %4d/%d  jumps %7lld", r.iteration, r.iterations, r.jumps);
   if (r.iteration > 0) {
     std::printf("  reward %.3f  landed %d/%d (failed %d, rejected %d)", r.reward_mean, r.batch.landed, r.batch.jumps,
                 r.batch.failed, r.batch.rejected);
     if (std::isfinite(r.hindsight_pairs)) std::printf("  pairs %.0f", r.hindsight_pairs);
+    printPenalties(r);
   }
   if (r.validated) {
     std::printf("  val median %.3f m, mean %.3f m, %.0f %% < 0.2 m, failed %d, rejected %d", r.validation.error_median,
@@ -86,7 +103,7 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
   run.resume = o.resume;
   run.command = commandLine(o);
   run.pronk_version = PRONK_VERSION;
-  run.git_commit = PRONK_GIT_COMMIT;
+  run.git_commit = buildCommit();
 
   const TrainingSpec& t = *scenario.training;
   // Under mpirun rank 0 learns and reports; the other ranks roll out in silence.

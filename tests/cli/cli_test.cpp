@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -383,6 +384,16 @@ TEST(Cli, VersionMissingScenarioAndPluginAfterTheSubcommand) {
   EXPECT_EQ(version.status, 0) << version.output;
   EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.5, commit "), std::string::npos)
       << version.output;
+  // The commit is the source tree's as it was built, not as it was configured.
+  if (FILE* git = popen(("git -C " + source("") + " rev-parse --short=12 HEAD 2>/dev/null").c_str(), "r")) {
+    char head[64] = {0};
+    const bool read = std::fgets(head, sizeof head, git) != nullptr;
+    if (pclose(git) == 0 && read) {
+      std::string commit(head);
+      while (!commit.empty() && std::isspace(static_cast<unsigned char>(commit.back()))) commit.pop_back();
+      EXPECT_NE(version.output.find(", commit " + commit), std::string::npos) << version.output;
+    }
+  }
   // A missing scenario is bad input (exit 3) named by the loader, for every command that reads one.
   for (const std::string command : {"run", "validate", "render -o x.mp4"}) {
     const Outcome o = pronk(command + " /nonexistent/scene.xml");

@@ -136,6 +136,11 @@ TEST(PronkTrain, TwoIterationsWriteAPolicyThatPronkRunTakes) {
   ASSERT_EQ(t.status, 0) << t.output;
   EXPECT_NE(t.output.find("iter    2/2  jumps      16  reward "), std::string::npos) << t.output;
   EXPECT_NE(t.output.find("trained 2 iteration(s), 16 jumps"), std::string::npos) << t.output;
+  // The mean penalties: their sum per jump and the largest three by name.
+  const size_t second = t.output.find("iter    2/2");
+  ASSERT_NE(second, std::string::npos) << t.output;
+  EXPECT_NE(t.output.substr(second, t.output.find('\n', second) - second).find("  penalties "), std::string::npos)
+      << t.output;
 
   const json policy = readJson(dir + "/policy.json");
   EXPECT_EQ(policy["version"], 3);
@@ -162,6 +167,13 @@ TEST(PronkTrain, TwoIterationsWriteAPolicyThatPronkRunTakes) {
   EXPECT_EQ(lines[0].rfind("iteration,iterations,jumps,batch_jumps,", 0), 0u);
   EXPECT_EQ(lines[1].rfind("0,2,0,", 0), 0u);
   EXPECT_EQ(lines[3].rfind("2,2,16,8,", 0), 0u);
+  // Every penalty the jump environment declares has its column, after their sum.
+  EXPECT_NE(lines[0].find(",eta_s,penalty_sum_mean,"), std::string::npos) << lines[0];
+  for (const char* p : {"penalty_touchdown_bounce", "penalty_lift_off_orientation", "penalty_torque_saturation"}) {
+    EXPECT_NE(lines[0].find(p), std::string::npos) << p;
+  }
+  EXPECT_EQ(std::count(lines[0].begin(), lines[0].end(), ','), std::count(lines[3].begin(), lines[3].end(), ','));
+  EXPECT_EQ(lines[3].find(",nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,nan,nan"), std::string::npos) << lines[3];
   const json checkpoint = readJson(dir + "/policy.checkpoint.json");
   EXPECT_EQ(checkpoint["format"], "pronk-train-checkpoint");
   EXPECT_EQ(checkpoint["iteration"], 2);

@@ -98,6 +98,12 @@ struct TrainingIteration {
   double jumps_per_s = 0;              // the batch's, in the rollout's wall time
   double wall_s = 0;                   // the run's so far (over resumes)
   double eta_s = 0;                    // to the run's last iteration
+  // The batch's mean of each penalty the environment declares (the reward's
+  // terms), over the jumps that reported it, named as the environment names
+  // them; and the mean of their sum per jump.
+  std::vector<std::string> penalty_names;
+  std::vector<double> penalty_means;
+  double penalty_sum_mean = 0;
 };
 
 struct TrainingOutcome {

@@ -50,7 +50,8 @@ Eigen::VectorXd eigen(const json& a) {
 
 }  // namespace
 
-CaseResult caseResultOf(const EpisodeRecord& record, const CaseDraw* draw) {
+CaseResult caseResultOf(const EpisodeRecord& record, const CaseDraw* draw,
+                        const std::vector<std::string>& penalty_names) {
   CaseResult c;
   c.index = record.index;
   if (!record.setup_error) c.outcome = judgeJump(record);
@@ -58,6 +59,10 @@ CaseResult caseResultOf(const EpisodeRecord& record, const CaseDraw* draw) {
   c.reward = record.result.reward;
   c.action = record.result.action;
   if (draw) c.draw = *draw;
+  for (const std::string& name : penalty_names) {
+    const double* v = record.result.episode.trace.findMetric(name);
+    c.penalties.push_back(v ? *v : std::numeric_limits<double>::quiet_NaN());
+  }
   return c;
 }
 
@@ -66,6 +71,7 @@ json toJson(const CaseResult& c) {
             {"observation", vector(c.observation)},
             {"reward", number(c.reward)},
             {"action", vector(c.action)},
+            {"penalties", vector(c.penalties)},
             {"draw",
              {{"ran", c.draw.ran},
               {"residual", vector(c.draw.residual)},
@@ -97,6 +103,7 @@ CaseResult caseResultFromJson(const json& j) {
     c.observation = doubles(j.at("observation"));
     c.reward = numberOf(j.at("reward"));
     c.action = doubles(j.at("action"));
+    c.penalties = doubles(j.at("penalties"));
     const json& d = j.at("draw");
     c.draw.ran = d.at("ran").get<bool>();
     c.draw.residual = eigen(d.at("residual"));

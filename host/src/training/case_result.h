@@ -34,11 +34,15 @@ struct CaseResult {
   double reward = 0;
   std::vector<double> action;  // the action the environment took
   CaseDraw draw;               // empty where no exploring policy drew one (validation)
+  // The environment's penalty metrics (the reward's terms), in the order of the
+  // names asked for; NaN where the jump reported none (a refused jump's).
+  std::vector<double> penalties;
 };
 
 // The report's judgement and what the learner needs, from a record (and the
 // draw its policy left for it, if any).
-CaseResult caseResultOf(const EpisodeRecord& record, const CaseDraw* draw);
+CaseResult caseResultOf(const EpisodeRecord& record, const CaseDraw* draw,
+                        const std::vector<std::string>& penalty_names);
 
 nlohmann::json toJson(const CaseResult& result);
 // Throws Error for a document that is not one.

@@ -131,6 +131,38 @@ class FiguresSink {
   int within_ = 0;
 };
 
+// Each penalty's mean over the jumps that reported it, and the mean per jump
+// of their sum (over the jumps that reported any).
+class PenaltyMeans {
+ public:
+  explicit PenaltyMeans(size_t count) : sums_(count, 0.0), counts_(count, 0) {}
+  void add(const std::vector<double>& values) {
+    double sum = 0;
+    bool any = false;
+    for (size_t i = 0; i < values.size() && i < sums_.size(); ++i) {
+      if (!std::isfinite(values[i])) continue;
+      sums_[i] += values[i];
+      ++counts_[i];
+      sum += values[i];
+      any = true;
+    }
+    if (any) total_ += sum, ++jumps_;
+  }
+  std::vector<double> means() const {
+    std::vector<double> m(sums_.size(), kNaN);
+    for (size_t i = 0; i < sums_.size(); ++i)
+      if (counts_[i] > 0) m[i] = sums_[i] / counts_[i];
+    return m;
+  }
+  double sumMean() const { return jumps_ > 0 ? total_ / jumps_ : kNaN; }
+
+ private:
+  std::vector<double> sums_;
+  std::vector<int> counts_;
+  double total_ = 0;
+  int jumps_ = 0;
+};
+
 PpoConfig ppoConfigOf(const TrainingSpec& t) {
   PpoConfig c;
   c.actor_hidden_sizes = t.actor_hidden_sizes;
@@ -196,6 +228,8 @@ class Trainer {
         hindsight_(spec_.hindsight_samples) {
     RolloutSetup setup = environmentSetup(scenario, registry, {}, "");
     factory_name_ = setup.factory->name;
+    for (const MetricSpec& m : setup.schema.metrics)
+      if (m.kind == MetricSpec::Kind::Penalty) penalty_names_.push_back(m.name);
     origin_ = setup.origin;
     if ((spec_.residual || spec_.aim) && setup.factory->environment->prior_action == nullptr) {
       throw InputError(spec_.where, std::string("<training>: ") + (spec_.aim ? "aim" : "residual") +
@@ -289,9 +323,12 @@ class Trainer {
                       &row.entropy, &row.kl, &row.clip_fraction, &row.learning_rate, &row.std_mean, &row.value_mean,
                       &row.actor_gradient_norm, &row.critic_gradient_norm, &row.jumps_per_s,
                       &row.batch.error_median, &row.batch.error_mean, &row.batch.within_02,
-                      &row.validation.error_median, &row.validation.error_mean, &row.validation.within_02}) {
+                      &row.validation.error_median, &row.validation.error_mean, &row.validation.within_02,
+                      &row.penalty_sum_mean}) {
       *v = kNaN;
     }
+    row.penalty_names = penalty_names_;
+    row.penalty_means.assign(penalty_names_.size(), kNaN);
     return row;
   }
 
@@ -374,9 +411,11 @@ class Trainer {
     std::vector<std::vector<double>> taken(static_cast<size_t>(n));
     std::vector<TargetSpec> hard;  // this batch's failed and refused targets
     FiguresSink sink;
+    PenaltyMeans penalties(penalty_names_.size());
     const auto t0 = Clock::now();
     const bool whole = rollout(cases, round, [&](const CaseResult& r) {
       const std::optional<JumpOutcome> outcome = sink.add(r);
+      penalties.add(r.penalties);
       const TargetSpec& target = cases[r.index].target;
       if (outcome && (outcome->status == "failed" || outcome->status == "rejected")) hard.push_back(target);
       observations[r.index] = r.observation;
@@ -397,6 +436,8 @@ class Trainer {
       return false;
     }
     row.batch = sink.figures();
+    row.penalty_means = penalties.means();
+    row.penalty_sum_mean = penalties.sumMean();
     row.jumps_per_s = n / std::max(row.rollout_s, 1e-9);
     if (spec_.oversample > 0) {
       for (TargetSpec& t : hard) {
@@ -472,7 +513,7 @@ class Trainer {
     if (!comm.distributed()) {
       const size_t delivered = pool_->run(cases, [&](EpisodeRecord& r) {
         if (stopRequested()) pool_->stop();
-        on_case(caseResultOf(r, nullptr));  // the draw stays where the policy wrote it
+        on_case(caseResultOf(r, nullptr, penalty_names_));  // the draw stays where the policy wrote it
       });
       return delivered == cases.size();
     }
@@ -483,7 +524,7 @@ class Trainer {
     std::iota(all.begin(), all.end(), size_t{0});
     pool_->run(cases, casesOfRank(all, comm.rank(), comm.size()), [&](EpisodeRecord& r) {
       if (stopRequested()) pool_->stop();
-      results[r.index] = caseResultOf(r, nullptr);  // rank 0's own draws are in place
+      results[r.index] = caseResultOf(r, nullptr, penalty_names_);  // rank 0's own draws are in place
       have[r.index] = true;
     });
     const std::vector<std::string> parts = comm.gather("[]");
@@ -540,7 +581,7 @@ class Trainer {
       std::iota(all.begin(), all.end(), size_t{0});
       json mine = json::array();
       pool_->run(*cases, casesOfRank(all, comm.rank(), comm.size()), [&](EpisodeRecord& r) {
-        mine.push_back(toJson(caseResultOf(r, state_->draws ? &draws[r.index] : nullptr)));
+        mine.push_back(toJson(caseResultOf(r, state_->draws ? &draws[r.index] : nullptr, penalty_names_)));
       });
       state_->noise = nullptr;
       state_->draws = nullptr;
@@ -641,7 +682,7 @@ class Trainer {
     row.eta_s = iteration_walls_.empty() ? kNaN : mean_wall * (spec_.iterations - row.iteration);
     if (row.validated) last_validation_ = row;
     log_.push_back(training_files::logValues(row));
-    training_files::writeLog(paths_.log, log_);
+    training_files::writeLog(paths_.log, log_, penalty_names_);
     if (on_row_) on_row_(row);
   }
 
@@ -658,7 +699,7 @@ class Trainer {
     c["wall_s"] = wall_before_ + secondsSince(start_);
     c["target_rng"] = training_files::rngJson(target_rng_);
     c["noise_rng"] = training_files::rngJson(noise_rng_);
-    c["log_columns"] = training_files::logColumns();
+    c["log_columns"] = training_files::logColumns(penalty_names_);
     c["log"] = log_;
     c["ppo"] = learner_->checkpoint();
     if (spec_.hindsight) c["hindsight"] = hindsight_.toJson();
@@ -698,11 +739,11 @@ class Trainer {
     wall_before_ = read.number(c, "wall_s");
     target_rng_.setState(read.rng(c, "target_rng"));
     noise_rng_.setState(read.rng(c, "noise_rng"));
-    if (read.at(c, "log_columns") != training_files::logColumns()) {
+    if (read.at(c, "log_columns") != training_files::logColumns(penalty_names_)) {
       read.fail("log_columns", "another pronk's log columns");
     }
     log_ = read.at(c, "log").get<std::vector<std::vector<json>>>();
-    last_validation_ = training_files::lastValidation(log_);
+    last_validation_ = training_files::lastValidation(log_, penalty_names_);
     try {
       learner_ = std::make_unique<PpoLearner>(PpoLearner::fromCheckpoint(read.at(c, "ppo")));
     } catch (const InputError&) {
@@ -790,6 +831,7 @@ class Trainer {
   Eigen::VectorXd mirror_;  // the task's signs in the mirror image (mirror guidance)
   std::deque<TargetSpec> hard_;  // the newest failed or refused targets (oversampling)
   std::string factory_name_, origin_;
+  std::vector<std::string> penalty_names_;  // the environment's penalty metrics
   int observation_size_ = 0, action_size_ = 0;
   std::shared_ptr<PolicyState> state_;
   std::unique_ptr<PpoLearner> learner_;

@@ -22,8 +22,8 @@ json value(double v) { return std::isfinite(v) ? json(v) : json(); }
 
 }  // namespace
 
-const std::vector<std::string>& logColumns() {
-  static const std::vector<std::string> columns = {
+std::vector<std::string> logColumns(const std::vector<std::string>& penalties) {
+  std::vector<std::string> columns = {
       "iteration", "iterations", "jumps",
       "batch_jumps", "batch_landed", "batch_failed", "batch_rejected", "batch_setup_errors",
       "batch_error_median_m", "batch_error_mean_m", "batch_within_0.2m",
@@ -32,14 +32,15 @@ const std::vector<std::string>& logColumns() {
       "validation_error_median_m", "validation_error_mean_m", "validation_within_0.2m",
       "critic_warmup_loss", "hindsight_pairs", "hindsight_added", "hindsight_loss", "oversampled", "policy_loss", "value_loss", "entropy", "kl", "clip_fraction",
       "learning_rate", "std_mean", "value_mean", "actor_gradient_norm", "critic_gradient_norm",
-      "rollout_s", "update_s", "validation_s", "jumps_per_s", "wall_s", "eta_s"};
+      "rollout_s", "update_s", "validation_s", "jumps_per_s", "wall_s", "eta_s", "penalty_sum_mean"};
+  for (const std::string& p : penalties) columns.push_back("penalty_" + p);
   return columns;
 }
 
 std::vector<json> logValues(const TrainingIteration& r) {
   const JumpSetFigures& b = r.batch;
   const JumpSetFigures& v = r.validation;
-  return {r.iteration, r.iterations, r.jumps,
+  std::vector<json> values = {r.iteration, r.iterations, r.jumps,
           b.jumps, b.landed, b.failed, b.rejected, b.setup_errors,
           value(b.error_median), value(b.error_mean), value(b.within_02),
           value(r.reward_mean), value(r.reward_std),
@@ -50,11 +51,14 @@ std::vector<json> logValues(const TrainingIteration& r) {
           value(r.clip_fraction), value(r.learning_rate), value(r.std_mean), value(r.value_mean),
           value(r.actor_gradient_norm), value(r.critic_gradient_norm),
           value(r.rollout_s), value(r.update_s), value(r.validation_s), value(r.jumps_per_s), value(r.wall_s),
-          value(r.eta_s)};
+          value(r.eta_s), value(r.penalty_sum_mean)};
+  for (double p : r.penalty_means) values.push_back(value(p));
+  return values;
 }
 
-std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<json>>& rows) {
-  const std::vector<std::string>& columns = logColumns();
+std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<json>>& rows,
+                                                const std::vector<std::string>& penalties) {
+  const std::vector<std::string> columns = logColumns(penalties);
   const auto column = [&](const std::string& name) {
     return static_cast<size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin());
   };
@@ -77,9 +81,10 @@ std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<js
   return std::nullopt;
 }
 
-void writeLog(const std::string& path, const std::vector<std::vector<json>>& rows) {
+void writeLog(const std::string& path, const std::vector<std::vector<json>>& rows,
+              const std::vector<std::string>& penalties) {
   std::string text;
-  for (const std::string& c : logColumns()) text += (text.empty() ? "" : ",") + c;
+  for (const std::string& c : logColumns(penalties)) text += (text.empty() ? "" : ",") + c;
   text += "\n";
   for (const std::vector<json>& row : rows) {
     for (size_t i = 0; i < row.size(); ++i) {

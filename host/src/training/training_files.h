@@ -18,12 +18,16 @@ constexpr const char* kCheckpointFormat = "pronk-train-checkpoint";
 constexpr int kCheckpointVersion = 1;
 
 // The log's columns, and a row's values in their order (NaN as null).
-const std::vector<std::string>& logColumns();
+// The columns end with penalty_sum_mean and one penalty_NAME per penalty of
+// the environment (`penalties`, the names of TrainingIteration::penalty_names).
+std::vector<std::string> logColumns(const std::vector<std::string>& penalties);
 std::vector<nlohmann::json> logValues(const TrainingIteration& row);
 // The last validated row of a log, as far as its validation goes.
-std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<nlohmann::json>>& rows);
+std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<nlohmann::json>>& rows,
+                                                const std::vector<std::string>& penalties);
 // Writes the CSV: the header, then one line per row (null as "nan").
-void writeLog(const std::string& path, const std::vector<std::vector<nlohmann::json>>& rows);
+void writeLog(const std::string& path, const std::vector<std::vector<nlohmann::json>>& rows,
+              const std::vector<std::string>& penalties);
 
 nlohmann::json rngJson(const Rng& rng);  // the four state words, 16 hex digits each
 
