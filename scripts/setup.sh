@@ -39,7 +39,7 @@ cmake --preset release
 cmake --build --preset release -j "$jobs"
 
 if [ "$mode" = demo ]; then
-  ./build/release/bin/pronk run scenarios/go1/forward.xml --policy assets/policies/go1_flat_aim.json --trace \
+  ./build/release/bin/pronk run scenarios/go1/forward.xml --policy assets/policies/go1_omni.json --trace \
     --out out/go1-forward \
     --video out/go1-forward/forward.mp4
 else
