@@ -711,3 +711,35 @@ TEST(JumpRuns, AnInterruptedSweepKeepsEveryFinishedJump) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 19: the shipped policy of a robot runs every jump scenario of that
+// robot (each target once; a file with only sweeps runs its start pose): no
+// file, robot or policy error, every jump judged.
+TEST(JumpRuns, TheShippedOmniPoliciesRunEveryJumpScenarioOfTheirRobot) {
+  for (const std::string robot : {"go1", "aliengo"}) {
+    const std::string policy = source("assets/policies/" + robot + "_omni.json");
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(source("scenarios/" + robot))) {
+      std::ifstream in(entry.path());
+      std::stringstream text;
+      text << in.rdbuf();
+      if (entry.path().extension() != ".xml" || text.str().find("jump_environment.xml") == std::string::npos) continue;
+      ++files;
+      const std::string out = outDir("shipped_" + robot + "_" + entry.path().stem().string());
+      const CommandRun r = pronk("run " + entry.path().string() + " --policy " + policy + " --jobs 2 --out " + out);
+      EXPECT_TRUE(r.status == 0 || r.status == 4) << entry.path() << "\n" << r.output;  // 4: a jump failed or missed
+      const nlohmann::json jumps = results(out);
+      ASSERT_TRUE(jumps.is_array() && !jumps.empty()) << entry.path() << "\n" << r.output;
+      for (const nlohmann::json& j : jumps) {
+        const std::string reason = j["failure_reason"].get<std::string>();
+        EXPECT_EQ(reason.rfind("error:", 0), std::string::npos) << entry.path() << ": " << reason;
+        EXPECT_EQ(reason.rfind("setup:", 0), std::string::npos) << entry.path() << ": " << reason;
+      }
+    }
+    EXPECT_GE(files, 8) << robot;
+  }
+}
+
+}  // namespace
