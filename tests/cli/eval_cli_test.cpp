@@ -44,7 +44,7 @@ std::vector<std::string> lines(const std::string& path) {
   return out;
 }
 
-// A jumps.csv line without its wall_s field (the 16th), which no two runs share.
+// A jumps.csv line without its wall_s field (the 18th), which no two runs share.
 std::string withoutWallTime(const std::string& line) {
   size_t start = 0;
   for (int field = 0; field < 17; ++field) start = line.find(',', start) + 1;

@@ -3,6 +3,7 @@
 // by its line), and a set directory that refuses to mix runs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -172,6 +173,10 @@ TEST(JumpsCsv, HasAHeaderAndOneLinePerRowWithTheSweepVariablesAndRfc4180Text) {
   std::getline(in, second);
   EXPECT_FALSE(std::getline(in, extra));
   EXPECT_NE(header.find(",joints.damping,reason"), std::string::npos) << header;
+  // As many columns named as a row holds (the first row quotes no comma).
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(first.begin(), first.end(), ','))
+      << header << "\n" << first;
+  EXPECT_NE(header.find(",error_xy,landed_height,error,error_yaw_deg,"), std::string::npos) << header;
   EXPECT_NE(first.find(",0.25,"), std::string::npos) << first;
   EXPECT_NE(second.find("rejected"), std::string::npos) << second;
   // RFC 4180: text quoted, a quote doubled, the comma kept inside the quotes.

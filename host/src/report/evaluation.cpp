@@ -228,7 +228,7 @@ void writeJumpsCsv(const std::vector<JumpRow>& rows, const std::string& path) {
       if (std::find(variables.begin(), variables.end(), a.first) == variables.end()) variables.push_back(a.first);
   std::string csv =
       "index,case,target_x,target_y,target_z,target_yaw_deg,landed_x,landed_y,landed_z,landed_yaw_deg,error_xy,"
-      "error_yaw_deg,status,ended_standing,simulated_s,wall_s,";
+      "landed_height,error,error_yaw_deg,status,ended_standing,simulated_s,wall_s,";
   for (const std::string& v : variables) csv += v + ',';
   csv += "reason\n";
   for (const JumpRow& r : rows) {
