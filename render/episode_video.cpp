@@ -190,7 +190,8 @@ EpisodeVideo::EpisodeVideo(const VideoOptions& options, std::ostream* progress) 
 EpisodeVideo::~EpisodeVideo() = default;
 
 void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
-                       const SceneMarkers& markers, const std::string& title) {
+                       const SceneMarkers& markers, const std::string& title,
+                       const std::optional<TerrainChange>& change) {
   const VideoOptions& options = impl_->options;
   if (trace.samples.empty() || trace.samples.front().body_poses.empty()) {
     throw Error(options.path + ": the trace holds no body poses to render");
@@ -225,8 +226,11 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
       camera.fovy_deg = options.fovy_deg;
       return camera;
     }
-    return frameJump(options.camera, Eigen::Vector3d(start.x(), start.y(), 0), Eigen::Vector3d(goal.x(), goal.y(), 0),
-                     apex, options.fovy_deg, aspect, s.base_position, headingOf(trace.samples.front().base_quaternion));
+    // An up-jump's goal keeps its height, so the view rises with the robot onto
+    // the platform; level and down-jumps are framed from the ground plane.
+    return frameJump(options.camera, Eigen::Vector3d(start.x(), start.y(), 0),
+                     Eigen::Vector3d(goal.x(), goal.y(), std::max(0.0, goal.z())), apex, options.fovy_deg, aspect,
+                     s.base_position, headingOf(trace.samples.front().base_quaternion));
   };
 
   // Between targets: a title card over the next jump's first frame.
@@ -247,6 +251,7 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
     const double t = std::min(sim_duration, i / options.fps * options.speed);
     const TraceSample& s = sampleAt(trace, t);
     FrameState frame{s.body_poses, s.foot_position, s.foot_in_contact};
+    renderer.setTerrain(change && t >= change->time ? change->terrain : terrain);
     renderer.render(cameraAt(s), markers, frame, rgba);
 
     // Overlay: phase badge, time, speed and title, the target, the timeline,
@@ -315,12 +320,13 @@ VideoSummary EpisodeVideo::finish() {
 }
 
 VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
-                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress) {
+                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress,
+                                const std::optional<TerrainChange>& change) {
   if (trace.samples.empty() || trace.samples.front().body_poses.empty()) {
     throw Error(options.path + ": the trace holds no body poses to render");
   }
   EpisodeVideo video(options, progress);
-  video.add(trace, robot, terrain, markers, "");
+  video.add(trace, robot, terrain, markers, "", change);
   return video.finish();
 }
 

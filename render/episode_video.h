@@ -57,6 +57,13 @@ struct OverlayText {
 OverlayText overlayText(const Trace& trace, const std::vector<PhaseSpan>& phases, const SceneMarkers& markers,
                         double t, bool last, double speed, const std::string& title);
 
+// A terrain that replaces the episode's from `time` on: the paper's apex
+// platform (EpisodeOptions::apex_platform), drawn from when it appeared.
+struct TerrainChange {
+  double time = 0;  // s, simulated
+  Terrain terrain;
+};
+
 // Several episodes one after another in one video (e.g. one jump per target).
 // Frames stream to the encoder as they are drawn.
 class EpisodeVideo {
@@ -69,8 +76,9 @@ class EpisodeVideo {
 
   // Appends the frames of one episode (its trace must hold body poses); `title`
   // is shown beside the time. Stills (VideoOptions::stills) come from the first episode.
+  // `change`: the terrain drawn from its time on instead of `terrain`.
   void add(const Trace& trace, const RobotDescription& robot, const Terrain& terrain, const SceneMarkers& markers,
-           const std::string& title);
+           const std::string& title, const std::optional<TerrainChange>& change = std::nullopt);
   // Flushes the encoder and closes the file.
   VideoSummary finish();
 
@@ -83,6 +91,7 @@ class EpisodeVideo {
 // second of work (frames, fps, ETA); nullptr for silence. Throws Error for an
 // unwritable path, a bad size or fps.
 VideoSummary renderEpisodeVideo(const Trace& trace, const RobotDescription& robot, const Terrain& terrain,
-                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress);
+                                const SceneMarkers& markers, const VideoOptions& options, std::ostream* progress,
+                                const std::optional<TerrainChange>& change = std::nullopt);
 
 }  // namespace pronk::render

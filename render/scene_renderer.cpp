@@ -34,7 +34,7 @@ constexpr int kShadowSegments = 20;
 
 SceneRenderer::SceneRenderer(int width, int height, const RobotDescription& robot, const Terrain& terrain,
                              std::vector<std::string>* warnings)
-    : gl_(width, height), robot_(robot), terrain_(terrain), unit_box_(boxMesh(Eigen::Vector3d::Ones())),
+    : gl_(width, height), robot_(robot), terrain_(&terrain), unit_box_(boxMesh(Eigen::Vector3d::Ones())),
       unit_sphere_(sphereMesh(1.0)), unit_cylinder_(cylinderMesh(1.0, 1.0)) {
   for (size_t b = 0; b < robot.bodies.size(); ++b) {
     for (const VisualShape& v : robot.bodies[b].visuals) {
@@ -72,8 +72,8 @@ void SceneRenderer::drawMesh(const TriangleMesh& mesh, const Eigen::Affine3d& po
 }
 
 void SceneRenderer::drawGround(const Eigen::Vector3d& centre) {
-  if (!terrain_.hasGround()) return;
-  const double z = terrain_.groundHeight();
+  if (!terrain_->hasGround()) return;
+  const double z = terrain_->groundHeight();
   const double tile = 0.25;
   const int n = 32;  // 8 m x 8 m around the scene
   const double x0 = std::floor(centre.x() / tile) * tile - n * tile / 2;
@@ -109,8 +109,8 @@ void SceneRenderer::drawGround(const Eigen::Vector3d& centre) {
 void SceneRenderer::drawShadow(const FrameState& frame) {
   // On flat ground only: a shadow on one plane would float beyond the edge of a
   // step platform.
-  if (!terrain_.hasGround() || !terrain_.boxes().empty()) return;
-  const double ground = terrain_.groundHeight();
+  if (!terrain_->hasGround() || !terrain_->boxes().empty()) return;
+  const double ground = terrain_->groundHeight();
   const Eigen::Vector3d sun = kSun.normalized();
   glDisable(GL_LIGHTING);
   glEnable(GL_BLEND);
@@ -198,7 +198,7 @@ void SceneRenderer::render(const Camera& camera, const SceneMarkers& markers, co
   glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
 
   drawGround(camera.target);
-  for (const TerrainBox& b : terrain_.boxes()) {
+  for (const TerrainBox& b : terrain_->boxes()) {
     Eigen::Affine3d pose = Eigen::Affine3d::Identity();
     pose.translation() = Eigen::Vector3d(b.position[0], b.position[1], b.position[2]);
     pose.linear() = Eigen::AngleAxisd(b.yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
@@ -231,7 +231,7 @@ void SceneRenderer::render(const Camera& camera, const SceneMarkers& markers, co
   for (size_t f = 0; f < frame.foot_positions.size() && f < frame.foot_in_contact.size(); ++f) {
     if (!frame.foot_in_contact[f]) continue;
     const Eigen::Vector3d& p = frame.foot_positions[f];
-    const auto top = terrain_.surfaceBelow(p.x(), p.y(), p.z());
+    const auto top = terrain_->surfaceBelow(p.x(), p.y(), p.z());
     Eigen::Affine3d disc = Eigen::Affine3d::Identity();
     disc.translation() = Eigen::Vector3d(p.x(), p.y(), (top ? top->height : 0.0) + 0.002);
     disc.scale(Eigen::Vector3d(0.04, 0.04, 0.003));

@@ -51,6 +51,8 @@ class SceneRenderer {
   // Renders and returns the frame, RGBA, rows top to bottom.
   void render(const Camera& camera, const SceneMarkers& markers, const FrameState& frame,
               std::vector<uint8_t>& rgba);
+  // Draws `terrain` from the next frame on (it must outlive the renderer's use of it).
+  void setTerrain(const Terrain& terrain) { terrain_ = &terrain; }
   int width() const { return gl_.width(); }
   int height() const { return gl_.height(); }
 
@@ -68,7 +70,7 @@ class SceneRenderer {
 
   OffscreenGl gl_;
   const RobotDescription& robot_;
-  const Terrain& terrain_;
+  const Terrain* terrain_;
   MeshLibrary meshes_;
   std::vector<std::unique_ptr<TriangleMesh>> primitives_;
   std::vector<Drawable> drawables_;

@@ -125,6 +125,7 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
   Trace trace;
   render::SceneMarkers markers;
   std::optional<Terrain> terrain;
+  std::optional<render::TerrainChange> apex;
   if (!options.trace.empty()) {
     const std::optional<RecordedJump> jump = recordedJump(options.trace);
     trace = replay(world, options.trace, jump);
@@ -138,6 +139,7 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
       // the markers its run's video drew.
       const Scenario s = applyCase(scenario, EpisodeCase{"", *jump->target, {}});
       terrain.emplace(s.ground, s.ground_height, s.terrain);
+      apex = apexTerrainChange(s, *terrain, trace);
       std::optional<EnvironmentSchema> schema;
       if (scenario.environment) {
         PluginRegistry registry;
@@ -161,7 +163,7 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
     markers = markersFor(scenario, world, trace.samples.front());
   }
   const render::VideoSummary v = render::renderEpisodeVideo(trace, world.robot(), terrain ? *terrain : world.terrain(),
-                                                            markers, video, &std::cerr);
+                                                            markers, video, &std::cerr, apex);
   for (const std::string& w : v.warnings) std::cerr << "warning: " << w << "\n";
   for (const std::string& png : v.stills) std::printf("still %s\n", png.c_str());
   std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),

@@ -162,6 +162,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
       const Terrain terrain(s.ground, s.ground_height, s.terrain);
       const render::SceneMarkers markers = jumpMarkers(trace, r.episode.target, outcome.landing.error_xy,
                                                       outcome.landing.error_yaw, terrain, gravity, &schema);
+      const std::optional<render::TerrainChange> apex = apexTerrainChange(s, terrain, trace);
       if (options.video_per_jump) {
         render::VideoOptions one = video;
         char suffix[32];
@@ -169,11 +170,12 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
         one.path = (fs::path(video.path).parent_path() / (fs::path(video.path).stem().string() + suffix +
                                                            fs::path(video.path).extension().string()))
                        .string();
-        const render::VideoSummary v = render::renderEpisodeVideo(trace, pool.robot(), terrain, markers, one, &std::cerr);
+        const render::VideoSummary v =
+            render::renderEpisodeVideo(trace, pool.robot(), terrain, markers, one, &std::cerr, apex);
         std::printf("video %s: %d frames, %.2f s\n", v.path.c_str(), v.frames, v.duration_s);
       } else {
         if (!movie) movie = std::make_unique<render::EpisodeVideo>(video, &std::cerr);
-        movie->add(trace, pool.robot(), terrain, markers, r.episode.label);
+        movie->add(trace, pool.robot(), terrain, markers, r.episode.label, apex);
       }
     }
     r.result.episode.trace.samples = {};  // keep memory bounded over long sweeps

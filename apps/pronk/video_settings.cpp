@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "pronk/episode.h"
 #include "pronk/landing.h"
 #include "render/declared_markers.h"
 
@@ -87,6 +88,12 @@ render::SceneMarkers jumpMarkers(const Trace& trace, const TargetSpec& t, std::o
   if (error_yaw && std::isfinite(*error_yaw)) m.landing_yaw_error = error_yaw;
   if (schema) render::addDeclaredMarkers(m, trace, *schema, terrain, gravity);
   return m;
+}
+
+std::optional<render::TerrainChange> apexTerrainChange(const Scenario& s, const Terrain& terrain, const Trace& trace) {
+  const std::optional<ApexPlatformEvent> e = apexPlatformEvent(trace);
+  if (!s.apex_platform || !e) return std::nullopt;
+  return render::TerrainChange{e->time, withApexPlatform(terrain, *s.apex_platform, e->top)};
 }
 
 // The scenario's first target in the world, for the video's marker.

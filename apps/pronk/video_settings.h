@@ -29,4 +29,9 @@ render::SceneMarkers jumpMarkers(const Trace& trace, const TargetSpec& target, s
                                  std::optional<double> error_yaw, const Terrain& terrain,
                                  const Eigen::Vector3d& gravity, const EnvironmentSchema* schema);
 
+// The terrain a jump's video draws once the apex platform of its case (`s`,
+// from applyCase) appeared, from the trace's event on; nullopt when the case has
+// none or the episode ended before its apex.
+std::optional<render::TerrainChange> apexTerrainChange(const Scenario& s, const Terrain& terrain, const Trace& trace);
+
 }  // namespace pronk::cli

@@ -105,6 +105,33 @@ TEST(Render, PlannedArcShowsThroughTheRobot) {
   EXPECT_GT((pixel(rgba, w, at) - kArcColour).norm(), 0.3);
 }
 
+// The apex platform of a height test appears mid-flight: the renderer draws
+// the terrain it is given from the next frame on, and a video switches at the
+// change's time (EpisodeVideo's loop).
+TEST(Render, ATerrainChangeIsDrawnFromTheNextFrameOn) {
+  Episode e(0.05);
+  const int w = 320, h = 240;
+  SceneRenderer renderer(w, h, e.robot, e.terrain);
+  const Camera camera = sideCamera();
+  const TraceSample& s = e.trace.samples.back();
+  ApexPlatform platform;
+  platform.x = 0.8;
+  platform.floor = -0.5;
+  platform.size = 0.4;
+  const Terrain later = withApexPlatform(e.terrain, platform, 0.25);
+  Eigen::Vector2d at;  // the middle of the platform's face towards the camera
+  ASSERT_TRUE(project(camera, w, h, Eigen::Vector3d(0.8, -0.2, 0.1), at));
+  std::vector<uint8_t> before, after;
+  renderer.render(camera, {}, {s.body_poses, s.foot_position, s.foot_in_contact}, before);
+  renderer.setTerrain(later);
+  renderer.render(camera, {}, {s.body_poses, s.foot_position, s.foot_in_contact}, after);
+  // The grey-green ground there before; the box's brown (red over blue) after.
+  const Eigen::Vector3d ground = pixel(before, w, at);
+  EXPECT_LT(std::abs(ground.x() - ground.z()), 0.05) << ground.transpose();
+  const Eigen::Vector3d box = pixel(after, w, at);
+  EXPECT_GT(box.x() - box.z(), 0.1) << box.transpose();
+}
+
 TEST(Render, SameTraceGivesIdenticalFrames) {
   Episode e(0.05);
   SceneRenderer renderer(160, 120, e.robot, e.terrain);

@@ -208,10 +208,42 @@ TEST(WorldPhysics, TheApexPlatformAppearsUnderTheFeetAtTheTopOfTheFlight) {
     const TraceEvent* placed = r.trace.findEvent("apex_platform");
     ASSERT_NE(placed, nullptr);
     EXPECT_NEAR(placed->time, 1.5 / 9.81, 0.01);
+    // What a video reads back: when, and the top the platform got.
+    const std::optional<ApexPlatformEvent> seen = apexPlatformEvent(r.trace);
+    ASSERT_TRUE(seen.has_value());
+    EXPECT_EQ(seen->time, placed->time);
+    const double expected_top = c.top > rise ? sole0 + rise - apex.clearance : std::max(c.top, c.floor);
+    EXPECT_NEAR(seen->top, expected_top, 0.01) << "top " << c.top;
     const Landing l = landingOf(r.trace, TargetSpec{});
     EXPECT_NEAR(l.height, c.height - sole0, 0.01) << "top " << c.top << " at x " << c.x;
     EXPECT_TRUE(l.standing);
   }
+}
+
+// The terrain the apex platform makes: a square box turned to the target's
+// heading with its top where asked, the ground plane moved to the floor, the
+// earlier boxes kept.
+TEST(WorldPhysics, TheApexTerrainIsThePlatformOverTheFloor) {
+  TerrainBox start;
+  start.size = {0.5, 0.5, 0.1};
+  start.position = {0, 0, 0.05};
+  const Terrain before(true, 0, {start});
+  ApexPlatform a;
+  a.x = 1.0;
+  a.y = 0.5;
+  a.yaw = M_PI / 4;
+  a.floor = -0.5;
+  a.size = 2.0;
+  const Terrain after = withApexPlatform(before, a, 0.3);
+  ASSERT_EQ(after.boxes().size(), 2u);
+  EXPECT_DOUBLE_EQ(after.groundHeight(), -0.5);
+  EXPECT_NEAR(after.topAt(1.0, 0.5)->height, 0.3, 1e-12);
+  // A corner of the turned square: inside along its diagonal, outside beyond it.
+  const double half_diagonal = std::sqrt(2.0);
+  EXPECT_NEAR(after.topAt(1.0 + 0.99 * half_diagonal, 0.5)->height, 0.3, 1e-12);
+  EXPECT_NEAR(after.topAt(1.0 + 1.01 * half_diagonal, 0.5)->height, -0.5, 1e-12);
+  EXPECT_NEAR(after.topAt(0, 0)->height, 0.1, 1e-12);  // the take-off box stays
+  EXPECT_TRUE(after.contains(Eigen::Vector3d(1.0, 0.5, -0.45)));  // solid down to the floor
 }
 
 TEST(WorldPhysics, AnUnreportedTrunkMassIsCarriedButNotTold) {

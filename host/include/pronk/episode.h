@@ -35,6 +35,15 @@ struct EpisodeOptions {
   std::optional<ApexPlatform> apex_platform;
 };
 
+// When, and with its top at what height, the apex platform appeared in an
+// episode (the trace's "apex_platform" event), or nullopt. For videos that
+// draw it.
+struct ApexPlatformEvent {
+  double time = 0;
+  double top = 0;  // world z, m
+};
+std::optional<ApexPlatformEvent> apexPlatformEvent(const Trace& trace);
+
 inline constexpr double kRestSpeed = 0.05;  // m/s, CoM
 inline constexpr double kRestRate = 0.1;    // rad/s, trunk angular velocity
 

@@ -42,4 +42,10 @@ class Terrain {
   std::vector<TerrainBox> boxes_;
 };
 
+// The terrain once the paper's apex platform has appeared (ApexPlatform): the
+// boxes of `before` and the platform with its top at `top`, on a ground plane
+// at the platform's floor. Shared by the episode that swaps it in and the
+// videos that draw it.
+Terrain withApexPlatform(const Terrain& before, const ApexPlatform& platform, double top);
+
 }  // namespace pronk

@@ -1,5 +1,6 @@
 #include "pronk/terrain.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pronk {
@@ -38,6 +39,18 @@ bool Terrain::contains(const Eigen::Vector3d& p) const {
     if (std::abs(p.z() - b.position[2]) <= half_z && insideFootprint(b, p.x(), p.y())) return true;
   }
   return false;
+}
+
+Terrain withApexPlatform(const Terrain& before, const ApexPlatform& platform, double top) {
+  TerrainBox box;
+  box.name = "apex_platform";
+  const double thickness = std::max(top - platform.floor, 0.01);
+  box.size = {platform.size, platform.size, thickness};
+  box.position = {platform.x, platform.y, top - thickness / 2};
+  box.yaw = platform.yaw;
+  std::vector<TerrainBox> boxes = before.boxes();
+  boxes.push_back(box);
+  return Terrain(before.hasGround(), platform.floor, std::move(boxes));
 }
 
 }  // namespace pronk

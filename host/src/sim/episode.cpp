@@ -8,6 +8,9 @@
 namespace pronk {
 namespace {
 
+// The "apex_platform" event's detail, written and read here only.
+constexpr const char* kApexDetail = "top z = %.4f m";
+
 TraceSample sampleOf(const World& world, const RobotState& s, const Eigen::VectorXd& torque, bool poses) {
   TraceSample out;
   out.time = s.time;
@@ -26,26 +29,26 @@ TraceSample sampleOf(const World& world, const RobotState& s, const Eigen::Vecto
   return out;
 }
 
-// The terrain once the apex platform appears: the world's boxes and the
-// platform, whose top is the target's surface or, when the lowest sole does not
-// clear it, `clearance` below that sole (never below the floor).
+// The terrain once the apex platform appears: its top is the target's surface
+// or, when the lowest sole does not clear it, `clearance` below that sole
+// (never below the floor).
 Terrain apexTerrain(const World& world, const ApexPlatform& a, double* top) {
   const RobotState& s = world.state();
   double sole = INFINITY;
   for (int f = 0; f < world.footCount(); ++f) sole = std::min(sole, s.foot_position[f].z() - world.footRadius(f));
   *top = std::clamp(std::min(a.top, sole - a.clearance), a.floor, a.top);
-  TerrainBox box;
-  box.name = "apex_platform";
-  const double thickness = std::max(*top - a.floor, 0.01);
-  box.size = {a.size, a.size, thickness};
-  box.position = {a.x, a.y, *top - thickness / 2};
-  box.yaw = a.yaw;
-  std::vector<TerrainBox> boxes = world.terrain().boxes();
-  boxes.push_back(box);
-  return Terrain(world.terrain().hasGround(), a.floor, std::move(boxes));
+  return withApexPlatform(world.terrain(), a, *top);
 }
 
 }  // namespace
+
+std::optional<ApexPlatformEvent> apexPlatformEvent(const Trace& trace) {
+  const TraceEvent* e = trace.findEvent("apex_platform");
+  ApexPlatformEvent out;
+  if (!e || std::sscanf(e->detail.c_str(), "top z = %lf m", &out.top) != 1) return std::nullopt;
+  out.time = e->time;
+  return out;
+}
 
 EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOptions& options) {
   EpisodeResult result;
@@ -82,7 +85,7 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
         double top = 0;
         world.replaceTerrain(apexTerrain(world, *options.apex_platform, &top));
         char detail[64];
-        std::snprintf(detail, sizeof detail, "top z = %.3f m", top);
+        std::snprintf(detail, sizeof detail, kApexDetail, top);
         trace.addEvent(world.time(), "apex_platform", detail);
         apex_placed = true;
       }
