@@ -115,8 +115,15 @@ std::string regionMap(const std::vector<JumpRow>& rows, const PlotContext& c, co
   g.line("unset contour");
   g.line("set surface");
   g.data("start", {{0.0, 0.0}});
-  const std::string first = "$contour using 1:2 with lines lw 2.5 lc rgb \"black\" title " +
-                            quoted(format("%.2g m contour (interpolated; failures count as 1 m)", c.radius));
+  // The legend names the contour, or says that there is none: where the
+  // averaged error stays under the radius everywhere (a large sample of a good
+  // policy), the table holds only its two header lines, and the line is left out
+  // of the plot (a macro) rather than vanishing unsaid.
+  g.line("contour_title = |$contour| > 2 ? " +
+         quoted(format("%.2g m contour (interpolated; failures count as 1 m)", c.radius)) + " : " +
+         quoted(format("%.2g m contour: none (the interpolated error stays under it)", c.radius)));
+  g.line("contour_lines = |$contour| > 2 ? '$contour using 1:2 with lines lw 2.5 lc rgb \"black\" notitle,' : ''");
+  const std::string first = "@contour_lines keyentry with lines lw 2.5 lc rgb \"black\" title contour_title";
   std::string command = plotCommand(g, {landed, failed, refused}, first);
   command += ", \\\n     $start using 1:2 with points pt 9 ps 2.2 lc rgb \"blue\" title \"start\"";
   g.line(command);

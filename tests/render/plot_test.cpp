@@ -85,6 +85,21 @@ TEST(EvaluationPlots, WritesEachFigureAsAPngBesideItsScript) {
   EXPECT_NE(script.find("(300 jumps, synthetic / region)"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir + "/region_map.log"));  // a clean run leaves no log
 
+  // Every jump within 0.5-1.5 cm: no 0.2 m contour anywhere. The legend says so, and
+  // gnuplot is not handed an empty line to draw (it would warn into a log).
+  std::vector<JumpRow> accurate = flatRegion(300);
+  for (JumpRow& r : accurate) {
+    r.status = "ok";
+    r.error_xy = r.error = 0.005 + 0.01 * double(r.index % 7) / 6;
+  }
+  const std::string adir = outDir("accurate");
+  ASSERT_EQ(plot::plotEvaluationSet(accurate, context, adir).size(), 2u);
+  EXPECT_EQ(pngSize(adir + "/region_map.png"), (std::pair<int, int>{1100, 820}));
+  EXPECT_FALSE(fs::exists(adir + "/region_map.log"));
+  std::ifstream accurate_in(adir + "/region_map.gp");
+  const std::string accurate_script((std::istreambuf_iterator<char>(accurate_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(accurate_script.find("0.2 m contour: none"), std::string::npos);
+
   std::vector<JumpRow> heights = flatRegion(60);
   for (size_t i = 0; i < heights.size(); ++i) heights[i].target_z = 0.1 * (i % 5) - 0.2;
   const std::string hdir = outDir("heights");
