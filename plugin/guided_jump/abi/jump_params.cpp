@@ -42,6 +42,9 @@ const pronk_param_decl kMomentumGain = {
     kDeclSize, "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
     "thrust: the trunk turns against the touchdown attitude error the whole-body angular momentum predicts, at this "
     "rate per rad/s (0: off, the paper's)"};
+const pronk_param_decl kMomentumYawShare = {
+    kDeclSize, "momentum_yaw_share", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "1", "",
+    "thrust: the share of the momentum feedback about the vertical (1: all three axes; 0: roll and pitch only)"};
 const pronk_param_decl kLegIk = {
     kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
     "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
@@ -91,6 +94,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back({kDeclSize, "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
                  "the landing surface's height above the take-off surface (when the legs extend)"});
     d.push_back(kMomentumGain);
+    d.push_back(kMomentumYawShare);
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
     d.push_back(kLandingFeet);
@@ -112,6 +116,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         feedforwardDecl("dynamic"),
         kFlightKpDivision,
         kMomentumGain,
+        kMomentumYawShare,
         kLegIk,
         kStanceFeet,
         kLandingFeet,
@@ -171,6 +176,7 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->feedforward = feedforwardFromName(read.string("feedforward"));
   s->flight_kp_division = read.real("flight_kp_division");
   s->momentum_gain = read.real("momentum_gain");
+  s->momentum_yaw_share = read.real("momentum_yaw_share");
   const std::string ik = read.string("leg_ik");
   if (ik != "exact" && ik != "newton") {
     throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");

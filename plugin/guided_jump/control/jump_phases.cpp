@@ -255,7 +255,8 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   // whole body's rate I^-1 L follows the plan's rate (the flight keeps L).
   if (settings_.momentum_gain > 0 && momentum) {
     if (const std::optional<Eigen::Vector3d> body = averageRate(*momentum)) {
-      const Eigen::Vector3d extra = settings_.momentum_gain * ((w_ref - *body) - momentum_tilt_ / planned_flight_time_);
+      Eigen::Vector3d extra = settings_.momentum_gain * ((w_ref - *body) - momentum_tilt_ / planned_flight_time_);
+      extra.z() *= settings_.momentum_yaw_share;
       momentum_tilt_ += (s.time - last_thrust_time_) * extra;
       w_ref += extra;
     }
@@ -451,7 +452,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     const double t = s.time - thrust_start_;
     if (!any_contact) {
       for (int j = 0; j < n_; ++j) blend_from_(j) = s.q[j];
-      char detail[260];
+      char detail[360];
       const Eigen::Vector3d v = heading_.transpose() * vec(s.com_velocity);
       int n = std::snprintf(detail, sizeof detail,
                             "%.3f s into the thrust (plan %.3f s); CoM velocity (%.3f, %.3f, %.3f) m/s (start frame)", t,
@@ -459,8 +460,13 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       const std::optional<Eigen::Vector3d> w = wholeBodyRate(host_);
       if (w && n > 0 && n < static_cast<int>(sizeof detail)) {
         const Eigen::Vector3d w_S = heading_.transpose() * *w;
-        std::snprintf(detail + n, sizeof detail - n, "; whole-body rate (%.2f, %.2f, %.2f) rad/s", w_S.x(), w_S.y(),
-                      w_S.z());
+        n += std::snprintf(detail + n, sizeof detail - n, "; whole-body rate (%.2f, %.2f, %.2f) rad/s", w_S.x(),
+                           w_S.y(), w_S.z());
+      }
+      if (momentum_tilt_.norm() > 0 && n > 0 && n < static_cast<int>(sizeof detail)) {
+        const Eigen::Vector3d tilt_S = heading_.transpose() * momentum_tilt_;
+        std::snprintf(detail + n, sizeof detail - n, "; momentum turn (%.2f, %.2f, %.2f) rad", tilt_S.x(), tilt_S.y(),
+                      tilt_S.z());
       }
       enter(JumpPhase::kFlight, s.time, detail);
     } else if (t > plan_->duration() + kLiftOffWait) {

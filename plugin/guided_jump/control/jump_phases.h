@@ -81,6 +81,10 @@ struct JumpSettings {
   // touchdown, (w_plan - I^-1 L) T_f minus the turn already added, at this rate per
   // rad/s (1/s; 0: off, the paper's kinematic thrust). Needs a host with ABI 1.2.
   double momentum_gain = 0.0;
+  // The share of that feedback about the world's vertical (1: all of it). On long
+  // turning jumps the vertical part asks the thrust for more twist than the
+  // saturated legs give and the body leaves pitching nose-down (docs/results.md).
+  double momentum_yaw_share = 1.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
   // none: the IK takes Newton steps on the host's kinematics. Set by the
