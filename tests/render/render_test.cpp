@@ -106,8 +106,8 @@ TEST(Render, PlannedArcShowsThroughTheRobot) {
 }
 
 // The apex platform of a height test appears mid-flight: the renderer draws
-// the terrain it is given from the next frame on, and a video switches at the
-// change's time (EpisodeVideo's loop).
+// the terrain it is given from the next frame on (EpisodeVideo hands it the
+// change's terrain from the change's time on; that switch is not tested here).
 TEST(Render, ATerrainChangeIsDrawnFromTheNextFrameOn) {
   Episode e(0.05);
   const int w = 320, h = 240;
