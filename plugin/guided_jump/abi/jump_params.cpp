@@ -45,6 +45,10 @@ const pronk_param_decl kMomentumGain = {
 const pronk_param_decl kMomentumYawShare = {
     kDeclSize, "momentum_yaw_share", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "1", "",
     "thrust: the share of the momentum feedback about the vertical (1: all three axes; 0: roll and pitch only)"};
+const pronk_param_decl kMomentumMomentGain = {
+    kDeclSize, "momentum_moment_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "1/s",
+    "thrust: a moment about the vertical of this gain times the whole-body angular momentum error (planned I w "
+    "minus L) joins the feed-forward wrench (0: off)"};
 const pronk_param_decl kLegIk = {
     kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
     "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
@@ -69,6 +73,11 @@ const pronk_param_decl kLandingParamDecls[] = {
      "landing: trunk levelling damping per kg of the robot's mass"},
     {kDeclSize, "landing_ground_reach", PRONK_PARAM_REAL, 0, 0.0, 0.5, 0, "0.01", "m",
      "landing: a foot still in the air reaches this far below the feet that are down"},
+    {kDeclSize, "landing_vertical_frequency", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "rad/s",
+     "landing: natural frequency of the CoM's critically damped vertical stop (0: landing_frequency)"},
+    {kDeclSize, "landing_track_sink", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "0", "",
+     "landing: 1: the legs' reference height follows the vertical stop's sink from the touchdown state; 0: the "
+     "standing height at once"},
 };
 
 // Both factories too, but each with its own default (see the lists below).
@@ -95,6 +104,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
                  "the landing surface's height above the take-off surface (when the legs extend)"});
     d.push_back(kMomentumGain);
     d.push_back(kMomentumYawShare);
+    d.push_back(kMomentumMomentGain);
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
     d.push_back(kLandingFeet);
@@ -117,6 +127,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kFlightKpDivision,
         kMomentumGain,
         kMomentumYawShare,
+        kMomentumMomentGain,
         kLegIk,
         kStanceFeet,
         kLandingFeet,
@@ -177,6 +188,7 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->flight_kp_division = read.real("flight_kp_division");
   s->momentum_gain = read.real("momentum_gain");
   s->momentum_yaw_share = read.real("momentum_yaw_share");
+  s->momentum_moment_gain = read.real("momentum_moment_gain");
   const std::string ik = read.string("leg_ik");
   if (ik != "exact" && ik != "newton") {
     throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");
@@ -197,6 +209,8 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->landing.tilt = read.real("landing_tilt_gain");
   s->landing.tilt_damping = read.real("landing_tilt_damping");
   s->landing.ground_reach = read.real("landing_ground_reach");
+  s->landing.vertical_frequency = read.real("landing_vertical_frequency");
+  s->landing.track_sink = read.integer("landing_track_sink") != 0;
 }
 
 jump::MotorModel motorModelFromName(const std::string& name) {

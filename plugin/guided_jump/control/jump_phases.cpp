@@ -288,11 +288,27 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
     const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
     moment = momentum->inertia * alpha_plan + w_plan.cross(momentum->inertia * w_plan);
   }
+  if (settings_.momentum_moment_gain > 0 && running) {
+    const std::optional<CentroidalMomentum> m = momentum ? momentum : centroidalMomentum(host_);
+    if (m) {
+      const Eigen::Vector3d error = m->inertia * w_plan - m->angular;
+      moment.z() += settings_.momentum_moment_gain * error.z();
+    }
+  }
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, moment, torque);
 }
 
 Eigen::Vector2d JumpController::landingStop(const LandingSettings& landing, const Eigen::Vector3d& v) {
   return jump::landingStopOffset(v, landing.friction, landing.frequency);
+}
+
+double JumpController::verticalStopFrequency() const {
+  return settings_.landing.vertical_frequency > 0 ? settings_.landing.vertical_frequency : settings_.landing.frequency;
+}
+
+double JumpController::verticalStopSink(double t) const {
+  const double wz = verticalStopFrequency();
+  return (touchdown_sink_ + (touchdown_sink_rate_ + wz * touchdown_sink_) * t) * std::exp(-wz * t);
 }
 
 void JumpController::landingReference(const pronk_robot_state& s) {
@@ -313,6 +329,7 @@ void JumpController::landingReference(const pronk_robot_state& s) {
   }
   Eigen::Vector3d trunk_des = centroid + R_des * stance_offset_;
   if (down > 0) trunk_des.z() = ground / down + stance_offset_.z();
+  if (down > 0 && settings_.landing.track_sink && touchdown_com_) trunk_des.z() += verticalStopSink(s.time - phase_start_);
   for (int f = 0; f < feet_; ++f) {
     if (s.foot_in_contact[f]) {
       const Eigen::Vector3d target = R_des.transpose() * (vec(s.foot_position + 3 * f) - trunk_des);
@@ -375,7 +392,9 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
     Eigen::Vector3d goal = *touchdown_com_;
     goal.z() = ground / down + standing_height_;
     const double wn = settings_.landing.frequency;
-    const Eigen::Vector3d a_des = wn * wn * (goal - c) - 2.0 * wn * v;
+    Eigen::Vector3d a_des = wn * wn * (goal - c) - 2.0 * wn * v;
+    const double wz = verticalStopFrequency();
+    a_des.z() = wz * wz * (goal.z() - c.z()) - 2.0 * wz * v.z();
     Eigen::Vector3d force = mass_ * (a_des - gravity_);
     force.z() = std::max(force.z(), 0.0);
     const double horizontal = force.head<2>().norm(), cap = settings_.landing.friction * force.z();
@@ -490,6 +509,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       // goal the critically damped stop is a pure exponential, with no overshoot.
       touchdown_com_ = vec(s.com_position);
       touchdown_com_->head<2>() += landingStop(settings_.landing, vec(s.com_velocity));
+      touchdown_sink_ = s.com_position[2] - (origin_.z() + settings_.landing_height + standing_height_);
+      touchdown_sink_rate_ = s.com_velocity[2];
       enter(JumpPhase::kLanding, s.time);
       all_down_seen_ = false;
       compute(s, torque);

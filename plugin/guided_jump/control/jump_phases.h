@@ -67,6 +67,8 @@ struct LandingSettings {
   double tilt = 4.0;           // N m / rad / kg: levelling stiffness
   double tilt_damping = 0.4;   // N m s / rad / kg: levelling damping
   double ground_reach = 0.01;  // m below the feet that are down, for a foot still in the air
+  double vertical_frequency = 0.0;  // rad/s of the vertical stop (0: frequency)
+  bool track_sink = false;          // the legs' reference follows the vertical stop's sink
 };
 
 struct JumpSettings {
@@ -85,6 +87,7 @@ struct JumpSettings {
   // turning jumps the vertical part asks the thrust for more twist than the
   // saturated legs give and the body leaves pitching nose-down (docs/results.md).
   double momentum_yaw_share = 1.0;
+  double momentum_moment_gain = 0.0;  // experimental: vertical moment per N m s of momentum error
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
   // none: the IK takes Newton steps on the host's kinematics. Set by the
@@ -174,6 +177,10 @@ class JumpController {
   void enter(JumpPhase phase, double time, const std::string& detail = "");
   void startThrust(const pronk_robot_state& s);
   void landingReference(const pronk_robot_state& s);
+  // The landing's vertical stop: its natural frequency, and the CoM's planned
+  // height below its landing height t after touchdown (critically damped).
+  double verticalStopFrequency() const;
+  double verticalStopSink(double t) const;
   // Where stance foot f's IK target lies in the world (settings_.anchored_stance_feet).
   Eigen::Vector3d stanceFoot(const pronk_robot_state& s, int f) const;
   void thrustTorques(const pronk_robot_state& s, double t, double* torque);
@@ -220,6 +227,7 @@ class JumpController {
   double thrust_start_ = 0;
   bool all_down_seen_ = false;  // landing: every foot has touched down
   std::optional<Eigen::Vector3d> touchdown_com_;  // CoM at touchdown after a flight
+  double touchdown_sink_ = 0, touchdown_sink_rate_ = 0;  // CoM below its landing height, and its rate, at touchdown
   double standing_height_ = 0;  // CoM above the ground at the thrust start
   Eigen::Vector3d momentum_tilt_ = Eigen::Vector3d::Zero();  // thrust: rotation vector (world) added to R_des
   double last_thrust_time_ = 0;
