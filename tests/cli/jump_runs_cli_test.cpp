@@ -12,6 +12,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 #include <sys/wait.h>
 
@@ -56,6 +57,17 @@ nlohmann::json onlyJump(const std::string& scenario, const std::string& out_name
   const nlohmann::json j = results(out);
   EXPECT_TRUE(j.is_array() && j.size() == 1u) << r.output;
   return j.is_array() && j.size() == 1u ? j[0] : nlohmann::json();
+}
+
+// Runs a test scenario with the ballistic policy and extra flags, expects
+// `count` jumps and returns the exit status and the jumps' results.json objects.
+std::pair<int, nlohmann::json> runTestScenario(const std::string& scenario, const std::string& out_name,
+                                               const std::string& params, size_t count) {
+  const std::string dir = outDir(out_name);
+  const CommandRun r = pronk("run " + testScenario(scenario) + " --policy ballistic --out " + dir + params);
+  const nlohmann::json j = results(dir);
+  EXPECT_EQ(j.size(), count) << r.output;
+  return std::make_pair(r.status, j);
 }
 
 TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
@@ -261,12 +273,7 @@ TEST(JumpRuns, TurningBackwardSidewaysCrouchesKeepTheirThighsOffTheGround) {
   // trunk-turn feedback on all three axes): the Go1 task's ground moment for the
   // vertical (session 22) alone already keeps two of the three feet pairs loaded.
   auto run = [](const std::string& name, const std::string& params) {
-    const std::string dir = outDir(name);
-    const CommandRun r =
-        pronk("run " + testScenario("go1_backward_sideways_turns.xml") + " --policy ballistic --out " + dir + params);
-    const nlohmann::json j = results(dir);
-    EXPECT_EQ(j.size(), 3u) << r.output;
-    return std::make_pair(r.status, j);
+    return runTestScenario("go1_backward_sideways_turns.xml", name, params, 3u);
   };
   const auto [status, jumps] = run("jump_backward_sideways", "");
   EXPECT_EQ(status, 0);
@@ -326,12 +333,7 @@ TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
   // moving at 3 s (10.8 cm with the old landing): the bound is on failures and
   // a quarter metre; two of the three end standing.
   auto run = [](const std::string& name, const std::string& params) {
-    const std::string dir = outDir(name);
-    const CommandRun r =
-        pronk("run " + testScenario("go1_rolled_landings.xml") + " --policy ballistic --out " + dir + params);
-    const nlohmann::json j = results(dir);
-    EXPECT_EQ(j.size(), 3u) << r.output;
-    return std::make_pair(r.status, j);
+    return runTestScenario("go1_rolled_landings.xml", name, params, 3u);
   };
   const auto [status, jumps] = run("jump_rolled_landings", "");
   EXPECT_NE(status, 1);
@@ -359,12 +361,7 @@ TEST(JumpRuns, LandingsWhoseLegsFollowTheSinkStayOnTheGround) {
   // Go1 task's landing (a 10 rad/s vertical stop the legs follow down) every one
   // is on its feet (docs/results.md, "Session 22").
   auto run = [](const std::string& name, const std::string& params) {
-    const std::string dir = outDir(name);
-    const CommandRun r =
-        pronk("run " + testScenario("go1_bouncing_landings.xml") + " --policy ballistic --out " + dir + params);
-    const nlohmann::json j = results(dir);
-    EXPECT_EQ(j.size(), 3u) << r.output;
-    return j;
+    return runTestScenario("go1_bouncing_landings.xml", name, params, 3u).second;
   };
   for (const nlohmann::json& jump : run("jump_bouncing_landings", "")) {
     EXPECT_NE(jump["status"], "failed") << jump["target"].dump() << " " << jump["failure_reason"];

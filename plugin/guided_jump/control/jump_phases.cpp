@@ -247,8 +247,10 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   const Eigen::Vector3d w_plan =
       running ? Eigen::Vector3d(heading_ * orientation_->angularVelocityWorld(tc)) : Eigen::Vector3d::Zero();
   const bool angular_feedforward = settings_.feedforward == Feedforward::kDynamicAngular && running;
+  const bool moment_feedback = settings_.momentum_moment_gain > 0 && running;
   const std::optional<CentroidalMomentum> momentum =
-      settings_.momentum_gain > 0 || angular_feedforward ? centroidalMomentum(host_) : std::nullopt;
+      settings_.momentum_gain > 0 || angular_feedforward || moment_feedback ? centroidalMomentum(host_)
+                                                                           : std::nullopt;
   Eigen::Vector3d w_ref = w_plan;
   // Whole-body momentum: the legs swinging under the trunk carry angular momentum
   // the trunk's attitude does not show; the trunk turns against it so that the
@@ -288,12 +290,10 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
     const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
     moment = momentum->inertia * alpha_plan + w_plan.cross(momentum->inertia * w_plan);
   }
-  if (settings_.momentum_moment_gain > 0 && running) {
-    const std::optional<CentroidalMomentum> m = momentum ? momentum : centroidalMomentum(host_);
-    if (m) {
-      const Eigen::Vector3d error = m->inertia * w_plan - m->angular;
-      moment.z() += settings_.momentum_moment_gain * error.z();
-    }
+  // The whole body turns about the vertical only by the ground's friction: the
+  // momentum error there is asked of the feet as a moment, not of the trunk's twist.
+  if (moment_feedback && momentum) {
+    moment.z() += settings_.momentum_moment_gain * (momentum->inertia * w_plan - momentum->angular).z();
   }
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, moment, torque);
 }

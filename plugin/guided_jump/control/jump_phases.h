@@ -87,7 +87,9 @@ struct JumpSettings {
   // turning jumps the vertical part asks the thrust for more twist than the
   // saturated legs give and the body leaves pitching nose-down (docs/results.md).
   double momentum_yaw_share = 1.0;
-  double momentum_moment_gain = 0.0;  // experimental: vertical moment per N m s of momentum error
+  // Thrust: a moment about the world's vertical of this gain times the whole-body
+  // momentum error (I w_plan - L)_z joins the feet's feed-forward wrench (1/s; 0: off).
+  double momentum_moment_gain = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
   // none: the IK takes Newton steps on the host's kinematics. Set by the
