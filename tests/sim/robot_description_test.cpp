@@ -254,6 +254,24 @@ TEST(RobotDescription, ALoopWithoutASecondParentIsRefusedAtItsJoint) {
   }
 }
 
+TEST(RobotDescription, UrdfdomReadsTheTreeThatPronkChecked) {
+  // Found by fuzzing: urdfdom's reader (TinyXML 1) decoded a name otherwise
+  // than tinyxml2 under a declared legacy encoding, so urdfdom built a loop that
+  // pronk's loop check never saw, and the robot's build overflowed the stack.
+  // urdfdom now reads tinyxml2's printout: the joint's child "\u0161" is a
+  // missing link to both.
+  const std::string path =
+      (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" / "loop_through_a_legacy_encoding.urdf")
+          .string();
+  try {
+    loadUrdf(path);
+    ADD_FAILURE() << "the file was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ":17: invalid URDF: ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\u0161"), std::string::npos) << e.what();
+  }
+}
+
 TEST(RobotDescription, UnparseableAndUnphysicalNumbersAreRefusedWithTheirLine) {
   // urdfdom silently dropped these (a trunk mass of "abc" gave a lighter robot
   // that still jumped) or took them; each is now an error at its line.

@@ -501,6 +501,28 @@ class Builder {
   std::vector<std::string> warnings_;
 };
 
+// urdfdom parses with TinyXML 1, which can read a file otherwise than tinyxml2
+// does: a declared legacy encoding turns "&#x161;" into "a", a broken
+// declaration hides markup from one reader only. A loop that only urdfdom saw
+// overflowed the stack (found by fuzzing). So urdfdom reads tinyxml2's printout
+// of the <robot> element that pronk checked: elements, attributes and text,
+// without declaration, comments or unknown nodes, and with only the five named
+// entities, which both readers decode alike. With no declaration TinyXML 1
+// keeps every other byte as it is.
+class CheckedTreePrinter : public tinyxml2::XMLPrinter {
+ public:
+  CheckedTreePrinter() : tinyxml2::XMLPrinter(nullptr, /*compact=*/true) {}
+  bool Visit(const tinyxml2::XMLDeclaration&) override { return true; }
+  bool Visit(const tinyxml2::XMLComment&) override { return true; }
+  bool Visit(const tinyxml2::XMLUnknown&) override { return true; }
+};
+
+std::string checkedTreeText(const tinyxml2::XMLElement& robot) {
+  CheckedTreePrinter printer;
+  robot.Accept(&printer);
+  return std::string(printer.CStr(), static_cast<size_t>(printer.CStrSize() - 1));
+}
+
 // The line a urdfdom message points at, when it names a link or joint in brackets.
 int lineForMessage(const std::string& message, const LineIndex& lines) {
   static const std::regex bracketed(R"(\[([^\]]+)\])");
@@ -612,7 +634,7 @@ RobotDescription parseUrdf(const std::string& xml, const std::string& origin, co
     std::lock_guard<std::mutex> lock(urdfdomMutex());
     console_bridge::useOutputHandler(&console);
     try {
-      model = urdf::parseURDF(xml);
+      model = urdf::parseURDF(checkedTreeText(*doc.FirstChildElement("robot")));
     } catch (const std::exception& e) {
       console.lines.push_back(e.what());
     }
