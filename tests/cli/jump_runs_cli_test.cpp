@@ -299,7 +299,10 @@ TEST(JumpRuns, AJumpAndItsMirrorImageLandMirrored) {
   // The Go1 is left-right symmetric, and so are the planner and the controller: a
   // jump to (x, -y, -yaw) plans the mirrored action (the signs of the lift-off
   // roll, yaw and their rates flip) and lands as the mirror image of the jump to
-  // (x, y, yaw), up to what the simulation's order of operations breaks.
+  // (x, y, yaw), up to what the simulation's order of operations breaks. The
+  // Go1 task's landing pose swings the legs further than levelled feet and
+  // carries those differences into the landed yaw: 0.014 rad apart measured
+  // (0.002 with landing_pose_levelling 1), within 0.02.
   const std::string dir = outDir("jump_mirror_pairs");
   const CommandRun r = pronk("run " + testScenario("go1_mirror_pairs.xml") + " --policy ballistic --out " + dir);
   EXPECT_EQ(r.status, 0) << r.output;
@@ -318,7 +321,7 @@ TEST(JumpRuns, AJumpAndItsMirrorImageLandMirrored) {
                 1e-9);
     EXPECT_NEAR(a["landing"]["x"].get<double>(), b["landing"]["x"].get<double>(), 0.005) << a["case"];
     EXPECT_NEAR(a["landing"]["y"].get<double>(), -b["landing"]["y"].get<double>(), 0.005) << a["case"];
-    EXPECT_NEAR(a["landing"]["yaw"].get<double>(), -b["landing"]["yaw"].get<double>(), 0.01) << a["case"];
+    EXPECT_NEAR(a["landing"]["yaw"].get<double>(), -b["landing"]["yaw"].get<double>(), 0.02) << a["case"];
   }
 }
 
@@ -331,7 +334,9 @@ TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
   // by every foot once all have touched down, the wrench loads them. With the
   // session-22 thrust and landing the forward one lands 22.9 cm off and is still
   // moving at 3 s (10.8 cm with the old landing): the bound is on failures and
-  // a quarter metre; two of the three end standing.
+  // a quarter metre; two of the three end standing. The comparison without the
+  // shared wrench keeps the landing pose it was measured with (feet levelled):
+  // the Go1 task's pose (landing_pose_levelling 1.5) lands two of the three even so.
   auto run = [](const std::string& name, const std::string& params) {
     return runTestScenario("go1_rolled_landings.xml", name, params, 3u);
   };
@@ -345,7 +350,7 @@ TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
     EXPECT_GT(std::abs(jump["metrics"]["touchdown_roll"].get<double>()), 0.3) << jump["target"].dump();
   }
   EXPECT_GE(standing, 2);
-  const auto [contact_status, contact] = run("jump_rolled_landings_contact", " --param landing_feet=contact");
+  const auto [contact_status, contact] = run("jump_rolled_landings_contact", " --param landing_feet=contact --param landing_pose_levelling=1");
   EXPECT_EQ(contact_status, 4);
   for (const nlohmann::json& jump : contact) {
     EXPECT_EQ(jump["status"], "failed") << jump["target"].dump();
@@ -370,6 +375,28 @@ TEST(JumpRuns, LandingsWhoseLegsFollowTheSinkStayOnTheGround) {
                                         " --param landing_track_sink=0 --param landing_vertical_frequency=0")) {
     EXPECT_EQ(jump["status"], "failed") << jump["target"].dump();
     EXPECT_EQ(jump["failure_reason"].get<std::string>().rfind("airborne: ", 0), 0u) << jump["failure_reason"];
+  }
+}
+
+TEST(JumpRuns, ALandingPoseThatSwingsTheLegsFurtherKeepsDownJumpsOffTheirThighs) {
+  // Backward down-jumps of a development sample (seeds 782, 783 of heights_dev.xml):
+  // with the landing pose levelling the feet under the tilted trunk, the trunk
+  // turns against the legs' swing in the air, lands rolled and a rear thigh hits
+  // the lower ground. The Go1 task's pose swings the legs half again as far
+  // (landing_pose_levelling 1.5), and each lands on its feet within 5 cm
+  // (docs/results.md, "Session 23").
+  auto run = [](const std::string& name, const std::string& params) {
+    return runTestScenario("go1_backward_down_jumps.xml", name, params, 3u).second;
+  };
+  for (const nlohmann::json& jump : run("jump_backward_down", "")) {
+    EXPECT_EQ(jump["status"], "ok") << jump["target"].dump() << " " << jump["failure_reason"];
+    EXPECT_TRUE(jump["ended_standing"].get<bool>()) << jump["target"].dump();
+    EXPECT_LT(jump["error_xy"].get<double>(), 0.05) << jump["target"].dump();
+  }
+  for (const nlohmann::json& jump : run("jump_backward_down_levelled", " --param landing_pose_levelling=1")) {
+    EXPECT_EQ(jump["status"], "failed") << jump["target"].dump();
+    EXPECT_NE(jump["failure_reason"].get<std::string>().find("_thigh' touched the terrain"), std::string::npos)
+        << jump["failure_reason"];
   }
 }
 

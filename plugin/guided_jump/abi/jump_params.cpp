@@ -75,6 +75,9 @@ const pronk_param_decl kLandingParamDecls[] = {
      "landing: a foot still in the air reaches this far below the feet that are down"},
     {kDeclSize, "landing_vertical_frequency", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "rad/s",
      "landing: natural frequency of the CoM's critically damped vertical stop (0: landing_frequency)"},
+    {kDeclSize, "landing_pose_levelling", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "1", "",
+     "descent: the landing pose's feet turn against the trunk's tilt by this multiple of it (1: as under a level "
+     "trunk; above 1 further, as the trunk turns against the legs' swing; 0: the pose in the trunk's frame)"},
     {kDeclSize, "landing_track_sink", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "0", "",
      "landing: 1: the legs' reference height follows the vertical stop's sink from the touchdown state; 0: the "
      "standing height at once"},
@@ -211,6 +214,7 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->landing.ground_reach = read.real("landing_ground_reach");
   s->landing.vertical_frequency = read.real("landing_vertical_frequency");
   s->landing.track_sink = read.integer("landing_track_sink") != 0;
+  s->landing.pose_levelling = read.real("landing_pose_levelling");
 }
 
 jump::MotorModel motorModelFromName(const std::string& name) {

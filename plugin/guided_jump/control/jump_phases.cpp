@@ -537,16 +537,23 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     } else {
       // The landing pose: the stance feet as they would be under a level trunk, so
       // that a pitched or rolled trunk still lands on all four feet together.
+      // Levelling swings the legs against the trunk's tilt (R = level tilt); in the
+      // air the legs carry most of the roll inertia, so the trunk turns further
+      // against that swing than the legs do. A levelling above 1 swings them
+      // further, so that they come nearer the pose they aim for.
       // The feet land where the landing will stop the CoM (landingStop), with the
       // vertical speed the CoM will have when it is back at the standing height.
       const Eigen::Matrix3d R = rotationOf(s);
       const Eigen::Matrix3d level = Eigen::AngleAxisd(std::atan2(R(1, 0), R(0, 0)), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      const Eigen::AngleAxisd tilt(level.transpose() * R);
+      const Eigen::Matrix3d counter =
+          Eigen::AngleAxisd(-settings_.landing.pose_levelling * tilt.angle(), tilt.axis()).toRotationMatrix();
       const double drop = std::max(0.0, s.com_position[2] - landing_com_z);
       Eigen::Vector3d v_touchdown = vec(s.com_velocity);
       v_touchdown.z() = -std::sqrt(v_touchdown.z() * v_touchdown.z() - 2.0 * gravity_.z() * drop);
       Eigen::Vector3d ahead = Eigen::Vector3d::Zero();
       ahead.head<2>() = landingStop(settings_.landing, v_touchdown);
-      for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, R.transpose() * (level * stance_feet_.col(f) + ahead));
+      for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, counter * (stance_feet_.col(f) + level.transpose() * ahead));
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);
     qd_ref_.setZero();

@@ -69,6 +69,9 @@ struct LandingSettings {
   double ground_reach = 0.01;  // m below the feet that are down, for a foot still in the air
   double vertical_frequency = 0.0;  // rad/s of the vertical stop (0: frequency)
   bool track_sink = false;          // the legs' reference follows the vertical stop's sink
+  // The descent's landing pose: its feet turn against the trunk's tilt by this
+  // multiple of it (1: the feet as under a level trunk; 0: the trunk's frame).
+  double pose_levelling = 1.0;
 };
 
 struct JumpSettings {
