@@ -1,6 +1,7 @@
 #!/bin/sh
 # libFuzzer runs of the scenario, URDF and policy readers (docs/fuzzing.md).
-#   scripts/fuzz.sh short [TARGET...]    each target for PRONK_FUZZ_SECONDS (default 25) s: CI
+#   scripts/fuzz.sh short [TARGET...]    each target for PRONK_FUZZ_SECONDS (default 25) s from the
+#                                        fixed seed PRONK_FUZZ_SEED (default 1): CI
 #   scripts/fuzz.sh long N [TARGET...]   each target for N executions
 #   scripts/fuzz.sh build                configure and build the fuzz preset only
 # TARGET: scenario, urdf, policy (default: all three, one after the other).
@@ -84,17 +85,19 @@ for t in $targets; do
   findings="$out/findings/$t"
   mkdir -p "$findings"
   log="$out/logs/$t-$mode.log"
+  # short (CI) draws from a fixed seed, so that a finding on a fresh corpus comes
+  # back with the same command; long draws a new one each run, to explore.
   if [ "$mode" = short ]; then
-    budget="-max_total_time=${PRONK_FUZZ_SECONDS:-25}"
+    budget="-max_total_time=${PRONK_FUZZ_SECONDS:-25} -seed=${PRONK_FUZZ_SEED:-1}"
   else
-    budget="-runs=$runs"
+    budget="-runs=$runs${PRONK_FUZZ_SEED:+ -seed=$PRONK_FUZZ_SEED}"
   fi
   before=$(ls "$findings" | wc -l)
   start=$(date +%s)
   # -timeout: an input that takes 10 s is a hang; -rss_limit_mb: one that
   # needs 2 GiB is a finding too. Each target runs alone (one core).
   rc=0
-  "$bin/fuzz_$t" "$out/corpus/$t" "$budget" -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 \
+  "$bin/fuzz_$t" "$out/corpus/$t" $budget -max_len="$max_len" -timeout=10 -rss_limit_mb=2048 \
     -dict="tests/fuzz/$t.dict" -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1 || rc=$?
   seconds=$(( $(date +%s) - start ))
   executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
@@ -106,6 +109,9 @@ for t in $targets; do
     tail -n 40 "$log" >&2
     for f in $(ls -t "$findings" | head -n 5); do
       echo "fuzz: $t: reproduce with: $bin/fuzz_$t $findings/$f" >&2
+      # The input itself, for a machine whose build directory is gone (CI):
+      # base64 -d > FILE turns the line back into it.
+      echo "fuzz: $t: $f as base64: $(base64 -w 0 "$findings/$f")" >&2
     done
   fi
 done
