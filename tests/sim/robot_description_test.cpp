@@ -206,51 +206,51 @@ TEST(RobotDescription, AKinematicLoopIsRefusedAtItsJointNotFollowedForever) {
   }
 }
 
-TEST(RobotDescription, APercentSignIsRefusedBeforeUrdfdomPrintsIt) {
-  // Found by fuzzing: urdfdom used a malformed rgba's text as a printf format.
-  const std::string path =
-      (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" / "percent_in_a_value.urdf").string();
+// The path of a fixture under tests/sim/urdf/.
+std::string urdfFixture(const std::string& file) {
+  return (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" / file).string();
+}
+
+// The message loadUrdf refuses a fixture with; a test failure (and "") if it
+// accepts it.
+std::string refusalOf(const std::string& path) {
   try {
     loadUrdf(path);
-    FAIL() << "a '%' reached urdfdom";
+    ADD_FAILURE() << path << " was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(path + ":6: <color>: rgba=\"0.7 0.%S 0.7 1\" holds a '%'", 0), 0u)
-        << e.what();
+    return e.what();
   }
+  return "";
+}
+
+TEST(RobotDescription, APercentSignIsRefusedBeforeUrdfdomPrintsIt) {
+  // Found by fuzzing: urdfdom used a malformed rgba's text as a printf format.
+  const std::string path = urdfFixture("percent_in_a_value.urdf");
+  const std::string message = refusalOf(path);
+  EXPECT_EQ(message.rfind(path + ":6: <color>: rgba=\"0.7 0.%S 0.7 1\" holds a '%'", 0), 0u) << message;
 }
 
 TEST(RobotDescription, APercentSignAnywhereIsRefusedWhateverTheXmlReaderMakesOfIt) {
   // Found by fuzzing: a broken <?xml declaration that tinyxml2 ends further down
   // hid a robot with "%S" in an rgba from the check above, and urdfdom read it.
-  const std::string path = (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" /
-                            "percent_in_a_broken_declaration.urdf")
-                               .string();
-  try {
-    loadUrdf(path);
-    FAIL() << "a '%' reached urdfdom";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(path + ":2: a '%' outside any attribute", 0), 0u) << e.what();
-  }
+  const std::string path = urdfFixture("percent_in_a_broken_declaration.urdf");
+  const std::string message = refusalOf(path);
+  EXPECT_EQ(message.rfind(path + ":2: a '%' outside any attribute", 0), 0u) << message;
 }
 
 TEST(RobotDescription, ALoopWithoutASecondParentIsRefusedAtItsJoint) {
   // Found by fuzzing (urdfdom's links around the loop were never freed): a
   // link jointed to itself, or links each other's parent apart from the
   // root's tree. urdfdom accepts both; their links were left out of the robot.
-  const std::filesystem::path dir = std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf";
   const std::pair<std::string, std::string> cases[] = {
       {"self_parent.urdf", ":12: joint 'foot_fixed' closes a kinematic loop (child <- parent: 'foot' <- 'foot')"},
       {"loop_beside_the_tree.urdf",
        ":15: joint 'knee' closes a kinematic loop (child <- parent: 'calf' <- 'thigh' <- 'calf')"},
   };
-  for (const auto& [file, message] : cases) {
-    const std::string path = (dir / file).string();
-    try {
-      loadUrdf(path);
-      ADD_FAILURE() << file << " was accepted";
-    } catch (const InputError& e) {
-      EXPECT_EQ(std::string(e.what()).rfind(path + message + ": a URDF is a tree", 0), 0u) << e.what();
-    }
+  for (const auto& [file, expected] : cases) {
+    const std::string path = urdfFixture(file);
+    const std::string message = refusalOf(path);
+    EXPECT_EQ(message.rfind(path + expected + ": a URDF is a tree", 0), 0u) << message;
   }
 }
 
@@ -260,16 +260,10 @@ TEST(RobotDescription, UrdfdomReadsTheTreeThatPronkChecked) {
   // pronk's loop check never saw, and the robot's build overflowed the stack.
   // urdfdom now reads tinyxml2's printout: the joint's child "\u0161" is a
   // missing link to both.
-  const std::string path =
-      (std::filesystem::path(PRONK_SOURCE_DIR) / "tests" / "sim" / "urdf" / "loop_through_a_legacy_encoding.urdf")
-          .string();
-  try {
-    loadUrdf(path);
-    ADD_FAILURE() << "the file was accepted";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(path + ":17: invalid URDF: ", 0), 0u) << e.what();
-    EXPECT_NE(std::string(e.what()).find("\u0161"), std::string::npos) << e.what();
-  }
+  const std::string path = urdfFixture("loop_through_a_legacy_encoding.urdf");
+  const std::string message = refusalOf(path);
+  EXPECT_EQ(message.rfind(path + ":17: invalid URDF: ", 0), 0u) << message;
+  EXPECT_NE(message.find("\u0161"), std::string::npos) << message;
 }
 
 TEST(RobotDescription, UnparseableAndUnphysicalNumbersAreRefusedWithTheirLine) {
