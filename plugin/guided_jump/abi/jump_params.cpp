@@ -61,6 +61,10 @@ const pronk_param_decl kLandingFeet = {
     kDeclSize, "landing_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "all", "",
     "landing: once every foot has touched down, the body wrench is shared by all the feet (all) or only by those "
     "in contact now (contact, the controller before session 16)"};
+const pronk_param_decl kThrustEnd = {
+    kDeclSize, "thrust_end", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "supported", "",
+    "thrust: from the plan's end until the last foot leaves, the feet still down hold the plan's end point and "
+    "carry the robot's weight (supported) or hold it by joint PD alone (unsupported)"};
 // The landing's body wrench (control/jump_phases.h, LandingSettings), both factories.
 const pronk_param_decl kLandingParamDecls[] = {
     {kDeclSize, "landing_frequency", PRONK_PARAM_REAL, 0, 0.1, 100.0, 0, "5", "rad/s",
@@ -111,6 +115,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
     d.push_back(kLandingFeet);
+    d.push_back(kThrustEnd);
     d.insert(d.end(), std::begin(kLandingParamDecls), std::end(kLandingParamDecls));
     return d;
   }();
@@ -134,6 +139,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kLegIk,
         kStanceFeet,
         kLandingFeet,
+        kThrustEnd,
         // Empty: derived from the robot (action_mapping.h, scaledActionRanges).
         {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
@@ -207,6 +213,11 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
     throw InvalidArgument("parameter 'landing_feet': '" + landing + "' is neither all nor contact");
   }
   s->landing_all_feet = landing == "all";
+  const std::string thrust_end = read.string("thrust_end");
+  if (thrust_end != "supported" && thrust_end != "unsupported") {
+    throw InvalidArgument("parameter 'thrust_end': '" + thrust_end + "' is neither supported nor unsupported");
+  }
+  s->supported_thrust_end = thrust_end == "supported";
   s->landing.frequency = read.real("landing_frequency");
   s->landing.friction = read.real("landing_friction");
   s->landing.tilt = read.real("landing_tilt_gain");

@@ -295,7 +295,8 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   if (moment_feedback && momentum) {
     moment.z() += settings_.momentum_moment_gain * (momentum->inertia * w_plan - momentum->angular).z();
   }
-  jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_, settings_.hold.gravity_compensation, acc, moment, torque);
+  jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_,
+               settings_.hold.gravity_compensation && (running || settings_.supported_thrust_end), acc, moment, torque);
 }
 
 Eigen::Vector2d JumpController::landingStop(const LandingSettings& landing, const Eigen::Vector3d& v) {

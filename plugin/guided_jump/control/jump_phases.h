@@ -105,6 +105,11 @@ struct JumpSettings {
   // Landing: once every foot has touched down, the body wrench is shared by all
   // the feet, not only those the host reports in contact now (false: those).
   bool landing_all_feet = true;
+  // Thrust, from the plan's end until the last foot leaves the ground: the feet
+  // still down carry the robot's weight (true), or hold the plan's end point by
+  // joint PD alone (false). Carried by the last foot or two, the weight turns
+  // the robot about them as it leaves (docs/method.md).
+  bool supported_thrust_end = true;
   std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
   LandingSettings landing;
 };
