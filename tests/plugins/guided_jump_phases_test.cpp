@@ -97,6 +97,11 @@ TEST_F(GuidedJumpPhases, UnknownMotorModelIsRefused) {
   EXPECT_THAT(createError({{"motor", "servo", {}}}), HasSubstr("parameter 'motor': 'servo' is neither dc nor effort"));
 }
 
+TEST_F(GuidedJumpPhases, UnknownThrustEndIsRefused) {
+  EXPECT_THAT(createError({{"thrust_end", "floating", {}}}),
+              HasSubstr("parameter 'thrust_end': 'floating' is neither supported nor unsupported"));
+}
+
 TEST_F(GuidedJumpPhases, DcMotorTorqueFallsWithJointSpeed) {
   // 10 N m motors with a 20 rad/s no-load speed (joint 2: 10 rad/s); the stance
   // PD pushes every joint below its stance hard in + (far more than 10 N m).
