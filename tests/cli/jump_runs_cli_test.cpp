@@ -335,8 +335,10 @@ TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
   // session-22 thrust and landing the forward one lands 22.9 cm off and is still
   // moving at 3 s (10.8 cm with the old landing): the bound is on failures and
   // a quarter metre; two of the three end standing. The comparison without the
-  // shared wrench keeps the landing pose it was measured with (feet levelled):
-  // the Go1 task's pose (landing_pose_levelling 1.5) lands two of the three even so.
+  // shared wrench keeps the landing pose and the thrust's end it was measured with
+  // (feet levelled, the last feet carrying the weight): the Go1 task's pose
+  // (landing_pose_levelling 1.5) lands two of the three even so, its thrust end
+  // (unsupported) one.
   auto run = [](const std::string& name, const std::string& params) {
     return runTestScenario("go1_rolled_landings.xml", name, params, 3u);
   };
@@ -350,7 +352,7 @@ TEST(JumpRuns, RolledLandingsLoadEveryFootAndStayOnTheirFeet) {
     EXPECT_GT(std::abs(jump["metrics"]["touchdown_roll"].get<double>()), 0.3) << jump["target"].dump();
   }
   EXPECT_GE(standing, 2);
-  const auto [contact_status, contact] = run("jump_rolled_landings_contact", " --param landing_feet=contact --param landing_pose_levelling=1");
+  const auto [contact_status, contact] = run("jump_rolled_landings_contact", " --param landing_feet=contact --param landing_pose_levelling=1 --param thrust_end=supported");
   EXPECT_EQ(contact_status, 4);
   for (const nlohmann::json& jump : contact) {
     EXPECT_EQ(jump["status"], "failed") << jump["target"].dump();
@@ -384,7 +386,9 @@ TEST(JumpRuns, ALandingPoseThatSwingsTheLegsFurtherKeepsDownJumpsOffTheirThighs)
   // turns against the legs' swing in the air, lands rolled and a rear thigh hits
   // the lower ground. The Go1 task's pose swings the legs half again as far
   // (landing_pose_levelling 1.5), and each lands on its feet within 5 cm
-  // (docs/results.md, "Session 23").
+  // (docs/results.md, "Session 23"). The comparison keeps the thrust's end it was
+  // measured with (the last feet carrying the weight): the Go1 task's (unsupported)
+  // lands one of the three with levelled feet too.
   auto run = [](const std::string& name, const std::string& params) {
     return runTestScenario("go1_backward_down_jumps.xml", name, params, 3u).second;
   };
@@ -393,7 +397,7 @@ TEST(JumpRuns, ALandingPoseThatSwingsTheLegsFurtherKeepsDownJumpsOffTheirThighs)
     EXPECT_TRUE(jump["ended_standing"].get<bool>()) << jump["target"].dump();
     EXPECT_LT(jump["error_xy"].get<double>(), 0.05) << jump["target"].dump();
   }
-  for (const nlohmann::json& jump : run("jump_backward_down_levelled", " --param landing_pose_levelling=1")) {
+  for (const nlohmann::json& jump : run("jump_backward_down_levelled", " --param landing_pose_levelling=1 --param thrust_end=supported")) {
     EXPECT_EQ(jump["status"], "failed") << jump["target"].dump();
     EXPECT_NE(jump["failure_reason"].get<std::string>().find("_thigh' touched the terrain"), std::string::npos)
         << jump["failure_reason"];
