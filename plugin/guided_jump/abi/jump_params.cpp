@@ -75,6 +75,10 @@ const pronk_param_decl kLandingParamDecls[] = {
      "landing: trunk levelling stiffness per kg of the robot's mass"},
     {kDeclSize, "landing_tilt_damping", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0.4", "N m s/rad/kg",
      "landing: trunk levelling damping per kg of the robot's mass"},
+    {kDeclSize, "landing_yaw_damping", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0.4", "N m s/rad/kg",
+     "landing: damping of the trunk's turn about the vertical per kg of the robot's mass"},
+    {kDeclSize, "landing_yaw_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "N m/rad/kg",
+     "landing: stiffness per kg of the robot's mass that turns the trunk to the plan's touchdown heading (0: off)"},
     {kDeclSize, "landing_ground_reach", PRONK_PARAM_REAL, 0, 0.0, 0.5, 0, "0.01", "m",
      "landing: a foot still in the air reaches this far below the feet that are down"},
     {kDeclSize, "landing_vertical_frequency", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "rad/s",
@@ -222,6 +226,8 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->landing.friction = read.real("landing_friction");
   s->landing.tilt = read.real("landing_tilt_gain");
   s->landing.tilt_damping = read.real("landing_tilt_damping");
+  s->landing.yaw_damping = read.real("landing_yaw_damping");
+  s->landing.yaw_gain = read.real("landing_yaw_gain");
   s->landing.ground_reach = read.real("landing_ground_reach");
   s->landing.vertical_frequency = read.real("landing_vertical_frequency");
   s->landing.track_sink = read.integer("landing_track_sink") != 0;

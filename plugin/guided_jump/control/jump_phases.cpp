@@ -154,6 +154,8 @@ void JumpController::startThrust(const pronk_robot_state& s) {
     const jump::PointState& lo = plan_->liftOff();
     const jump::BallisticFlight flight({lo.position, lo.velocity}, heading_.transpose() * gravity_);
     planned_flight_time_ = std::max(0.05, flight.landingTime(standing_height_ + settings_.landing_height).value_or(0.0));
+    planned_touchdown_yaw_ = std::atan2(heading_(1, 0), heading_(0, 0)) + orientation_->liftOffRpy().z() +
+                             orientation_->liftOffRpyRate().z() * planned_flight_time_;
   }
   for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
   thrust_feet_.resize(3, feet_);
@@ -403,8 +405,15 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
     const Eigen::Vector3d rpy = rpyFromRotation(rotationOf(s));
     const Eigen::Matrix3d yaw = Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const double tilt = settings_.landing.tilt;
-    const Eigen::Vector3d moment = mass_ * (yaw * Eigen::Vector3d(-tilt * rpy.x(), -tilt * rpy.y(), 0.0) -
-                                            settings_.landing.tilt_damping * vec(s.base_angular_velocity));
+    const Eigen::Vector3d w = vec(s.base_angular_velocity);
+    const Eigen::Vector3d damping(settings_.landing.tilt_damping * w.x(), settings_.landing.tilt_damping * w.y(),
+                                  settings_.landing.yaw_damping * w.z());
+    // The heading: towards the plan's touchdown heading, so that a trunk that
+    // touched down past it (or short of it) turns back (or on) on its feet.
+    const double heading_error = std::remainder(planned_touchdown_yaw_ - rpy.z(), 2.0 * M_PI);
+    const Eigen::Vector3d moment =
+        mass_ * (yaw * Eigen::Vector3d(-tilt * rpy.x(), -tilt * rpy.y(), settings_.landing.yaw_gain * heading_error) -
+                 damping);
     // A foot that touches with no load flickers in and out of contact; left out
     // of the wrench, it stays unloaded, and the robot balances on the other
     // side's feet until it tips over them (docs/results.md).

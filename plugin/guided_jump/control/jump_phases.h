@@ -66,6 +66,8 @@ struct LandingSettings {
   double friction = 0.6;       // the share of the normal force the stop may ask sideways
   double tilt = 4.0;           // N m / rad / kg: levelling stiffness
   double tilt_damping = 0.4;   // N m s / rad / kg: levelling damping
+  double yaw_damping = 0.4;    // N m s / rad / kg: damping of the turn about the vertical
+  double yaw_gain = 0.0;       // N m / rad / kg: towards the plan's touchdown heading
   double ground_reach = 0.01;  // m below the feet that are down, for a foot still in the air
   double vertical_frequency = 0.0;  // rad/s of the vertical stop (0: frequency)
   bool track_sink = false;          // the legs' reference follows the vertical stop's sink
@@ -242,6 +244,7 @@ class JumpController {
   Eigen::Vector3d momentum_tilt_ = Eigen::Vector3d::Zero();  // thrust: rotation vector (world) added to R_des
   double last_thrust_time_ = 0;
   double planned_flight_time_ = 0.2;  // s, lift-off to touchdown
+  double planned_touchdown_yaw_ = 0;  // rad, world: the plan's lift-off yaw plus its yaw rate over the flight
   std::unique_ptr<jump::ThrustPlan> plan_;
   std::unique_ptr<jump::OrientationTrajectory> orientation_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();  // S origin, world
