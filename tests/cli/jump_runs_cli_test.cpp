@@ -49,10 +49,11 @@ nlohmann::json runOf(const std::string& dir) {
 // Runs a shipped scenario with the ballistic policy (and its trace), expects
 // exit 0 and one jump, and returns that jump's results.json object (null after
 // a failed expectation); the output directory in *dir.
-nlohmann::json onlyJump(const std::string& scenario, const std::string& out_name, std::string* dir = nullptr) {
+nlohmann::json onlyJump(const std::string& scenario, const std::string& out_name, std::string* dir = nullptr,
+                        const std::string& params = "") {
   const std::string out = outDir(out_name);
   if (dir) *dir = out;
-  const CommandRun r = pronk("run " + source(scenario) + " --policy ballistic --trace --out " + out);
+  const CommandRun r = pronk("run " + source(scenario) + " --policy ballistic --trace --out " + out + params);
   EXPECT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = results(out);
   EXPECT_TRUE(j.is_array() && j.size() == 1u) << r.output;
@@ -473,19 +474,11 @@ TEST(JumpRuns, TheLandingTurnsTheTrunkToThePlannedHeading) {
   // Go1 task's) turns the trunk back, or on, on its feet: both land within
   // 0.3 deg (measured 0.17 and 0.23), and as near the target (docs/results.md,
   // "Session 26").
-  auto jump = [](const std::string& scenario, const std::string& name, const std::string& params) {
-    const std::string dir = outDir(name);
-    const CommandRun r = pronk("run " + source("scenarios/go1/" + scenario) + " --policy ballistic --out " + dir + params);
-    EXPECT_EQ(r.status, 0) << r.output;
-    const nlohmann::json j = results(dir);
-    EXPECT_EQ(j.size(), 1u) << r.output;
-    return j.size() == 1u ? j[0] : nlohmann::json();
-  };
   const std::string heading = " --param landing_yaw_gain=10 --param landing_yaw_damping=1.5";
   const std::string damping = " --param landing_yaw_gain=0 --param landing_yaw_damping=0.4";
   for (const std::string scenario : {"diagonal.xml", "twist.xml"}) {
-    const nlohmann::json held = jump(scenario, "jump_heading_" + scenario, heading);
-    const nlohmann::json free = jump(scenario, "jump_no_heading_" + scenario, damping);
+    const nlohmann::json held = onlyJump("scenarios/go1/" + scenario, "jump_heading_" + scenario, nullptr, heading);
+    const nlohmann::json free = onlyJump("scenarios/go1/" + scenario, "jump_no_heading_" + scenario, nullptr, damping);
     ASSERT_FALSE(held.is_null() || free.is_null()) << scenario;
     EXPECT_EQ(held["status"], "ok") << scenario << " " << held["failure_reason"];
     EXPECT_TRUE(held["ended_standing"].get<bool>()) << scenario;
