@@ -79,6 +79,9 @@ const pronk_param_decl kLandingParamDecls[] = {
      "landing: damping of the trunk's turn about the vertical per kg of the robot's mass"},
     {kDeclSize, "landing_yaw_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "N m/rad/kg",
      "landing: stiffness per kg of the robot's mass that turns the trunk to the plan's touchdown heading (0: off)"},
+    {kDeclSize, "landing_extension", PRONK_PARAM_REAL, 0, 0.0, 0.3, 0, "0", "m",
+     "landing: the descent's landing pose reaches this far below the stance feet, for a longer stroke (0: the stance "
+     "pose)"},
     {kDeclSize, "landing_ground_reach", PRONK_PARAM_REAL, 0, 0.0, 0.5, 0, "0.01", "m",
      "landing: a foot still in the air reaches this far below the feet that are down"},
     {kDeclSize, "landing_vertical_frequency", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "rad/s",
@@ -229,6 +232,7 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->landing.yaw_damping = read.real("landing_yaw_damping");
   s->landing.yaw_gain = read.real("landing_yaw_gain");
   s->landing.ground_reach = read.real("landing_ground_reach");
+  s->landing.extension = read.real("landing_extension");
   s->landing.vertical_frequency = read.real("landing_vertical_frequency");
   s->landing.track_sink = read.integer("landing_track_sink") != 0;
   s->landing.pose_levelling = read.real("landing_pose_levelling");

@@ -529,7 +529,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     // The legs stay tucked until the extension, kBlendTime long, ends kExtensionLead
     // before the predicted touchdown on the landing surface (the reference extends
     // at the apex; docs/results.md has the measured comparison).
-    const double landing_com_z = origin_.z() + settings_.landing_height + standing_height_;
+    // The CoM touches down landing.extension higher than it stands.
+    const double landing_com_z = origin_.z() + settings_.landing_height + standing_height_ + settings_.landing.extension;
     const auto timeToTouchdown = [&] {  // 0 once the CoM is below its touchdown height
       if (!(gravity_.z() < 0.0)) return std::numeric_limits<double>::infinity();
       const jump::BallisticFlight fall({vec(s.com_position), vec(s.com_velocity)}, gravity_);
@@ -563,6 +564,7 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
       v_touchdown.z() = -std::sqrt(v_touchdown.z() * v_touchdown.z() - 2.0 * gravity_.z() * drop);
       Eigen::Vector3d ahead = Eigen::Vector3d::Zero();
       ahead.head<2>() = landingStop(settings_.landing, v_touchdown);
+      ahead.z() = -settings_.landing.extension;
       for (int f = 0; f < feet_; ++f) goal.segment<3>(3 * f) = legIk(f, counter * (stance_feet_.col(f) + level.transpose() * ahead));
     }
     q_ref_ = blend_from_ + a * (goal - blend_from_);

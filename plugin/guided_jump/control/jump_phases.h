@@ -74,6 +74,10 @@ struct LandingSettings {
   // The descent's landing pose: its feet turn against the trunk's tilt by this
   // multiple of it (1: the feet as under a level trunk; 0: the trunk's frame).
   double pose_levelling = 1.0;
+  // m the descent's landing pose reaches below the stance feet: a leg that
+  // touches down longer has more stroke to stop the fall in before a thigh
+  // comes down to the ground (0: the stance pose).
+  double extension = 0.0;
 };
 
 struct JumpSettings {
