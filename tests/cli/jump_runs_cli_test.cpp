@@ -493,7 +493,7 @@ TEST(JumpRuns, TheLandingTurnsTheTrunkToThePlannedHeading) {
 
 TEST(JumpRuns, LegsThatTouchDownLongerStopTheAliengosDownJumpsAboveItsThighs) {
   // Down-jumps of 0.2-0.4 m of a development sample (region3d.xml seeds 7, 9 and
-  // 11): the Aliengo touches down at 2.5-3 m/s and its knee motors stay saturated
+  // 11): the Aliengo touches down fast and its knee motors stay saturated
   // at 44 N m through the stop. From the stance pose at touchdown a thigh comes
   // down to the lower ground before the fall is stopped; with the legs 5 cm
   // longer at touchdown (the Aliengo task's landing_extension 0.05) each lands on
