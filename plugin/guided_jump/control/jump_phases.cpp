@@ -514,7 +514,11 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
   }
   const double kp_flight = settings_.hold.kp / settings_.flight_kp_division;
   if (phase_ == JumpPhase::kFlight || phase_ == JumpPhase::kDescend) {
-    if (any_contact) {
+    // A foot that brushes the ground while the CoM still rises (a toe that
+    // scuffs just after lift-off) is not a touchdown: taken for one, the landing's
+    // stop would pull the robot back to where it left and steer the whole flight
+    // (docs/results.md, "Session 28").
+    if (any_contact && s.com_velocity[2] <= 0.0) {
       // The CoM comes to rest landingStop() beyond the touchdown point: with that
       // goal the critically damped stop is a pure exponential, with no overshoot.
       touchdown_com_ = vec(s.com_position);
