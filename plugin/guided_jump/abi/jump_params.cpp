@@ -49,6 +49,10 @@ const pronk_param_decl kMomentumMomentGain = {
     kDeclSize, "momentum_moment_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "1/s",
     "thrust: a moment about the vertical of this gain times the whole-body angular momentum error (planned I w "
     "minus L) joins the feed-forward wrench (0: off)"};
+const pronk_param_decl kMomentumMomentFriction = {
+    kDeclSize, "momentum_moment_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0", "",
+    "thrust: that moment only as far as the feet's feed-forward forces stay within this friction coefficient "
+    "(0: all of it)"};
 const pronk_param_decl kLegIk = {
     kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
     "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
@@ -119,6 +123,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back(kMomentumGain);
     d.push_back(kMomentumYawShare);
     d.push_back(kMomentumMomentGain);
+    d.push_back(kMomentumMomentFriction);
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
     d.push_back(kLandingFeet);
@@ -143,6 +148,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kMomentumGain,
         kMomentumYawShare,
         kMomentumMomentGain,
+        kMomentumMomentFriction,
         kLegIk,
         kStanceFeet,
         kLandingFeet,
@@ -205,6 +211,7 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->momentum_gain = read.real("momentum_gain");
   s->momentum_yaw_share = read.real("momentum_yaw_share");
   s->momentum_moment_gain = read.real("momentum_moment_gain");
+  s->momentum_moment_friction = read.real("momentum_moment_friction");
   const std::string ik = read.string("leg_ik");
   if (ik != "exact" && ik != "newton") {
     throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");

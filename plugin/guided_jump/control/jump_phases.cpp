@@ -295,7 +295,9 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   // The whole body turns about the vertical only by the ground's friction: the
   // momentum error there is asked of the feet as a moment, not of the trunk's twist.
   if (moment_feedback && momentum) {
-    moment.z() += settings_.momentum_moment_gain * (momentum->inertia * w_plan - momentum->angular).z();
+    Eigen::Vector3d twist(0, 0, settings_.momentum_moment_gain * (momentum->inertia * w_plan - momentum->angular).z());
+    if (settings_.momentum_moment_friction > 0) twist *= twistShareWithinFriction(s, acc, moment, twist);
+    moment += twist;
   }
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_,
                settings_.hold.gravity_compensation && (running || settings_.supported_thrust_end), acc, moment, torque);
@@ -348,6 +350,19 @@ void JumpController::landingReference(const pronk_robot_state& s) {
     }
   }
   qd_ref_.setZero();
+}
+
+double JumpController::twistShareWithinFriction(const pronk_robot_state& s, const Eigen::Vector3d& com_acceleration,
+                                                const Eigen::Vector3d& moment, const Eigen::Vector3d& twist) const {
+  std::vector<int> contact;
+  for (int f = 0; f < feet_; ++f) {
+    if (s.foot_in_contact[f]) contact.push_back(f);
+  }
+  if (contact.empty()) return 1.0;
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
+  for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
+  return jump::momentShareWithinFriction(points, vec(s.com_position), mass_ * (com_acceleration - gravity_), moment,
+                                         twist, settings_.momentum_moment_friction);
 }
 
 void JumpController::applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force,

@@ -99,6 +99,11 @@ struct JumpSettings {
   // Thrust: a moment about the world's vertical of this gain times the whole-body
   // momentum error (I w_plan - L)_z joins the feet's feed-forward wrench (1/s; 0: off).
   double momentum_moment_gain = 0.0;
+  // That moment only as far as the feet's forces for the feed-forward wrench stay
+  // within this friction coefficient (0: all of it). Past the cone the feet slip,
+  // lift early, and the pair left pushes the body off pitching (docs/results.md,
+  // "Session 28").
+  double momentum_moment_friction = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
   // none: the IK takes Newton steps on the host's kinematics. Set by the
@@ -217,6 +222,10 @@ class JumpController {
   // Landing: joint PD plus the body wrench that stops the CoM where it touched
   // down, levels the trunk and carries the weight, spread over the feet (applyBodyWrench).
   void landingTorques(const pronk_robot_state& s, double kp, double* torque);
+  // The share of the thrust's ground twist the feet in contact hold within
+  // momentum_moment_friction, beside the feed-forward acceleration and moment.
+  double twistShareWithinFriction(const pronk_robot_state& s, const Eigen::Vector3d& com_acceleration,
+                                  const Eigen::Vector3d& moment, const Eigen::Vector3d& twist) const;
   // tau -= sum over the feet in contact (every_foot: all feet) of J_i^T f_i, f = the
   // minimum-norm forces that put (force, moment about the CoM) on the body
   // (method/force_distribution.h).

@@ -32,6 +32,29 @@ Eigen::Matrix3Xd distributeWrench(const Eigen::Matrix3Xd& contact_points_world, 
   return Eigen::Map<const Eigen::Matrix3Xd>(f.data(), 3, k);
 }
 
+double momentShareWithinFriction(const Eigen::Matrix3Xd& contact_points_world, const Eigen::Vector3d& com_world,
+                                 const Eigen::Vector3d& force_world, const Eigen::Vector3d& moment_about_com,
+                                 const Eigen::Vector3d& extra_moment, double mu) {
+  const Eigen::Matrix3Xd base = distributeWrench(contact_points_world, com_world, force_world, moment_about_com);
+  const Eigen::Matrix3Xd extra =
+      distributeWrench(contact_points_world, com_world, Eigen::Vector3d::Zero(), extra_moment);  // linear in w
+  const auto within = [&](double s) {
+    for (Eigen::Index i = 0; i < base.cols(); ++i) {
+      const Eigen::Vector3d f = base.col(i) + s * extra.col(i);
+      if (f.z() < 0.0 || f.head<2>().norm() > mu * f.z()) return false;
+    }
+    return true;
+  };
+  if (within(1.0)) return 1.0;
+  if (!within(0.0)) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 30; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (within(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 Eigen::Matrix3Xd distributeWeight(const Eigen::Matrix3Xd& contact_points_world, const Eigen::Vector3d& com_world,
                                   double mass, const Eigen::Vector3d& gravity_world) {
   return distributeWrench(contact_points_world, com_world, -mass * gravity_world, Eigen::Vector3d::Zero());

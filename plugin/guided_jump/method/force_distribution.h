@@ -19,6 +19,14 @@ namespace pronk::jump {
 Eigen::Matrix3Xd distributeWrench(const Eigen::Matrix3Xd& contact_points_world, const Eigen::Vector3d& com_world,
                                   const Eigen::Vector3d& force_world, const Eigen::Vector3d& moment_about_com);
 
+// The largest share s in [0, 1] of extra_moment that the minimum-norm forces for
+// (force, moment + s extra_moment) hold with every foot inside its friction cone
+// (|f_t| <= mu f_z, f_z >= 0). 0 when the forces without it already leave a cone.
+// Each foot's cone cuts the line of s in one interval, so bisection finds it.
+double momentShareWithinFriction(const Eigen::Matrix3Xd& contact_points_world, const Eigen::Vector3d& com_world,
+                                 const Eigen::Vector3d& force_world, const Eigen::Vector3d& moment_about_com,
+                                 const Eigen::Vector3d& extra_moment, double mu);
+
 // The forces that carry the robot's weight: force -mass * gravity, no moment.
 Eigen::Matrix3Xd distributeWeight(const Eigen::Matrix3Xd& contact_points_world, const Eigen::Vector3d& com_world,
                                   double mass, const Eigen::Vector3d& gravity_world);
