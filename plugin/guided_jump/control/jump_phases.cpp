@@ -352,28 +352,29 @@ void JumpController::landingReference(const pronk_robot_state& s) {
   qd_ref_.setZero();
 }
 
+std::vector<int> JumpController::wrenchFeet(const pronk_robot_state& s, bool every_foot, Eigen::Matrix3Xd* points) const {
+  std::vector<int> feet;
+  for (int f = 0; f < feet_; ++f) {
+    if (every_foot || s.foot_in_contact[f]) feet.push_back(f);
+  }
+  points->resize(3, static_cast<Eigen::Index>(feet.size()));
+  for (size_t i = 0; i < feet.size(); ++i) points->col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * feet[i]);
+  return feet;
+}
+
 double JumpController::twistShareWithinFriction(const pronk_robot_state& s, const Eigen::Vector3d& com_acceleration,
                                                 const Eigen::Vector3d& moment, const Eigen::Vector3d& twist) const {
-  std::vector<int> contact;
-  for (int f = 0; f < feet_; ++f) {
-    if (s.foot_in_contact[f]) contact.push_back(f);
-  }
-  if (contact.empty()) return 1.0;
-  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
-  for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
+  Eigen::Matrix3Xd points;
+  if (wrenchFeet(s, false, &points).empty()) return 1.0;
   return jump::momentShareWithinFriction(points, vec(s.com_position), mass_ * (com_acceleration - gravity_), moment,
                                          twist, settings_.momentum_moment_friction);
 }
 
 void JumpController::applyBodyWrench(const pronk_robot_state& s, const Eigen::Vector3d& force,
                                      const Eigen::Vector3d& moment, Eigen::Ref<Eigen::VectorXd> tau, bool every_foot) {
-  std::vector<int> contact;
-  for (int f = 0; f < feet_; ++f) {
-    if (every_foot || s.foot_in_contact[f]) contact.push_back(f);
-  }
+  Eigen::Matrix3Xd points;
+  const std::vector<int> contact = wrenchFeet(s, every_foot, &points);
   if (contact.empty()) return;
-  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
-  for (size_t i = 0; i < contact.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = vec(s.foot_position + 3 * contact[i]);
   const Eigen::Matrix3Xd forces = jump::distributeWrench(points, vec(s.com_position), force, moment);
   for (size_t i = 0; i < contact.size(); ++i) {
     if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {

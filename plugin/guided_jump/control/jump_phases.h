@@ -222,6 +222,9 @@ class JumpController {
   // Landing: joint PD plus the body wrench that stops the CoM where it touched
   // down, levels the trunk and carries the weight, spread over the feet (applyBodyWrench).
   void landingTorques(const pronk_robot_state& s, double kp, double* torque);
+  // The feet a body wrench is spread over (those in contact; every_foot: all) and,
+  // in *points, where they are (world).
+  std::vector<int> wrenchFeet(const pronk_robot_state& s, bool every_foot, Eigen::Matrix3Xd* points) const;
   // The share of the thrust's ground twist the feet in contact hold within
   // momentum_moment_friction, beside the feed-forward acceleration and moment.
   double twistShareWithinFriction(const pronk_robot_state& s, const Eigen::Vector3d& com_acceleration,
