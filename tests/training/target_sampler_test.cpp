@@ -55,6 +55,26 @@ TEST(TargetSampler, FlatTargetsMayLieAtTheStart) {
   EXPECT_EQ(g.y, 0);
 }
 
+TEST(TargetSampler, DrawsItsFlatShareAtZeroHeightAndTheRestAsWithout) {
+  pronk::TrainingSpec t = omniRegion();
+  t.flat_share = 0.25;
+  pronk::Rng rng(9);
+  const std::vector<pronk::EpisodeCase> cases = pronk::TargetSampler(t).cases(rng, 4000, "c");
+  int flat = 0;
+  for (const pronk::EpisodeCase& c : cases) flat += c.target.z == 0;
+  // Binomial(4000, 0.25): mean 1000, sd 27; the uniform z is never exactly 0.
+  EXPECT_GT(flat, 880);
+  EXPECT_LT(flat, 1120);
+  // A region without a flat share draws what it drew before flat_share existed:
+  // no extra number from the stream.
+  pronk::TrainingSpec plain = omniRegion();
+  pronk::Rng a(3), b(3);
+  const pronk::TargetSpec first = pronk::TargetSampler(plain).draw(a);
+  EXPECT_EQ(first.x, t.x.min + (t.x.max - t.x.min) * b.uniform());
+  EXPECT_EQ(first.y, t.y.min + (t.y.max - t.y.min) * b.uniform());
+  EXPECT_EQ(first.z, t.z.min + (t.z.max - t.z.min) * b.uniform());
+}
+
 TEST(ValidationSet, IsFixedForItsSeedAndApartFromTheTrainingDraws) {
   pronk::TrainingSpec t = omniRegion();
   t.validation_count = 50;

@@ -207,6 +207,9 @@ struct TrainingRange {
 struct TrainingSpec {
   // The task region, relative to the start as a target's x, y, z, yaw.
   TrainingRange x, y, z, yaw;
+  // Share of the targets drawn flat (z = 0) in a region with heights: the flat
+  // ground a height range meets only at one point gets its own samples.
+  double flat_share = 0.0;
   SourceLocation region_where;
   int iterations = 100;
   int jumps_per_iteration = 256;

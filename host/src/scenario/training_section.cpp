@@ -52,6 +52,10 @@ void readRegion(const XMLElement& e, const SourceFile& file, TrainingSpec& t) {
   t.y = readRange(r, "y", false);
   t.z = readRange(r, "z", false);
   t.yaw = readRange(r, "yaw", true);
+  t.flat_share = r.number("flat_share", t.flat_share, Range::closed(0, 1));
+  if (t.flat_share > 0 && t.z.min == 0 && t.z.max == 0) {
+    r.fail("flat_share " + formatNumber(t.flat_share) + " needs a z range: every target of this region is flat");
+  }
   r.rejectUnknownAttributes();
   r.children({});
 }

@@ -22,6 +22,9 @@ TargetSpec TargetSampler::draw(Rng& rng) const {
     t.x = uniform(rng, spec_.x);
     t.y = uniform(rng, spec_.y);
     t.z = uniform(rng, spec_.z);
+    // One more draw only with a flat share, so that a region without one keeps
+    // its seeds' targets.
+    if (spec_.flat_share > 0 && rng.uniform() < spec_.flat_share) t.z = 0;
     t.yaw = uniform(rng, spec_.yaw);
     t.where = spec_.region_where;
     if (t.z == 0 || std::hypot(t.x, t.y) >= kLeastStepDistance) return t;

@@ -184,6 +184,7 @@ json settingsJson(const TrainingSpec& t) {
   return {{"seed", t.seed},
           {"jumps_per_iteration", t.jumps_per_iteration},
           {"region", {t.x.min, t.x.max, t.y.min, t.y.max, t.z.min, t.z.max, t.yaw.min, t.yaw.max}},
+          {"flat_share", t.flat_share},
           {"actor_hidden_sizes", t.actor_hidden_sizes},
           {"critic_hidden_sizes", t.critic_hidden_sizes},
           {"epochs", t.epochs},
@@ -723,6 +724,8 @@ class Trainer {
     const json& settings = read.at(c, "settings");
     const json wanted = settingsJson(spec_);
     for (const auto& item : wanted.items()) {
+      // Checkpoints from before flat_share have none: theirs was 0.
+      if (item.key() == "flat_share" && !settings.contains(item.key()) && item.value() == 0.0) continue;
       if (!settings.contains(item.key()) || settings[item.key()] != item.value()) {
         read.fail("settings." + item.key(),
                   (settings.contains(item.key()) ? settings[item.key()].dump() : std::string("missing")) +
