@@ -33,9 +33,10 @@
 namespace pronk {
 
 // Targets uniform in the <training> region: x, y, z and yaw independently,
-// roll and pitch 0, and z = 0 for the region's flat_share of them. A target with a height (z != 0) lies at least
-// kLeastStepDistance from the start horizontally (its step platform's edge goes
-// between): closer ones are drawn again.
+// roll and pitch 0, and z = 0 for the region's flat_share of them. A target
+// with a height (z != 0) lies at least kLeastStepDistance from the start
+// horizontally (its step platform's edge goes between): closer ones are drawn
+// again.
 class TargetSampler {
  public:
   static constexpr double kLeastStepDistance = 0.15;  // m
