@@ -390,6 +390,16 @@ TEST(PronkTrain, BadFilesAndOptionsAreErrorsThatSayWhere) {
   EXPECT_EQ(r.status, 3) << r.output;
   EXPECT_NE(r.output.find(dir + "/p.checkpoint.json: settings.seed: 3, but this run has 4"), std::string::npos)
       << r.output;
+
+  // A checkpoint from before <region flat_share> existed has no such setting:
+  // its share was 0, and a run without one continues it.
+  json old = readJson(dir + "/p.checkpoint.json");
+  ASSERT_TRUE(old["settings"].contains("flat_share"));
+  old["settings"].erase("flat_share");
+  std::ofstream(dir + "/old.checkpoint.json") << old.dump();
+  r = pronk("train " + kTinyTraining + " --iterations 2 --out " + dir + "/old.json --resume " + dir +
+            "/old.checkpoint.json");
+  EXPECT_EQ(r.status, 0) << r.output;
 }
 
 }  // namespace
