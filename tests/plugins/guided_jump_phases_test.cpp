@@ -102,6 +102,11 @@ TEST_F(GuidedJumpPhases, UnknownThrustEndIsRefused) {
               HasSubstr("parameter 'thrust_end': 'floating' is neither supported nor unsupported"));
 }
 
+TEST_F(GuidedJumpPhases, UnknownLandingGoalIsRefused) {
+  EXPECT_THAT(createError({{"landing_goal", "target", {}}}),
+              HasSubstr("parameter 'landing_goal': 'target' is neither touchdown nor plan"));
+}
+
 TEST_F(GuidedJumpPhases, DcMotorTorqueFallsWithJointSpeed) {
   // 10 N m motors with a 20 rad/s no-load speed (joint 2: 10 rad/s); the stance
   // PD pushes every joint below its stance hard in + (far more than 10 N m).

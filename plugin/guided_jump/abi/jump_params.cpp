@@ -53,6 +53,10 @@ const pronk_param_decl kMomentumMomentFriction = {
     kDeclSize, "momentum_moment_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0", "",
     "thrust: that moment only as far as the feet's feed-forward forces stay within this friction coefficient "
     "(0: all of it)"};
+const pronk_param_decl kThrustVelocityGain = {
+    kDeclSize, "thrust_velocity_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "1/s",
+    "thrust: the feet's feed-forward wrench also asks for this gain times the CoM's velocity error against the plan "
+    "(m (a_ref + g_v (v_ref - v) - g); 0: off)"};
 const pronk_param_decl kLegIk = {
     kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
     "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
@@ -96,6 +100,13 @@ const pronk_param_decl kLandingParamDecls[] = {
     {kDeclSize, "landing_track_sink", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "0", "",
      "landing: 1: the legs' reference height follows the vertical stop's sink from the touchdown state; 0: the "
      "standing height at once"},
+    {kDeclSize, "landing_goal", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "touchdown", "",
+     "landing: where the horizontal stop brings the CoM: touchdown (the touchdown point plus the stop's distance "
+     "for the touchdown velocity) or plan (the plan's own: its ballistic touchdown at the standing height plus the "
+     "stop for the velocity there, the point the planner aims at the target)"},
+    {kDeclSize, "landing_track_stop", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
+     "landing: the legs' reference places the CoM on the horizontal stop's path from the touchdown state, at most "
+     "this far ahead of the CoM (0: off, the trunk over the feet at once)"},
 };
 
 // Both factories too, but each with its own default (see the lists below).
@@ -124,6 +135,7 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
     d.push_back(kMomentumYawShare);
     d.push_back(kMomentumMomentGain);
     d.push_back(kMomentumMomentFriction);
+    d.push_back(kThrustVelocityGain);
     d.push_back(kLegIk);
     d.push_back(kStanceFeet);
     d.push_back(kLandingFeet);
@@ -149,6 +161,7 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         kMomentumYawShare,
         kMomentumMomentGain,
         kMomentumMomentFriction,
+        kThrustVelocityGain,
         kLegIk,
         kStanceFeet,
         kLandingFeet,
@@ -212,6 +225,7 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->momentum_yaw_share = read.real("momentum_yaw_share");
   s->momentum_moment_gain = read.real("momentum_moment_gain");
   s->momentum_moment_friction = read.real("momentum_moment_friction");
+  s->thrust_velocity_gain = read.real("thrust_velocity_gain");
   const std::string ik = read.string("leg_ik");
   if (ik != "exact" && ik != "newton") {
     throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");
@@ -242,6 +256,12 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->landing.extension = read.real("landing_extension");
   s->landing.vertical_frequency = read.real("landing_vertical_frequency");
   s->landing.track_sink = read.integer("landing_track_sink") != 0;
+  s->landing.track_stop = read.real("landing_track_stop");
+  const std::string goal = read.string("landing_goal");
+  if (goal != "touchdown" && goal != "plan") {
+    throw InvalidArgument("parameter 'landing_goal': '" + goal + "' is neither touchdown nor plan");
+  }
+  s->landing.goal_from_plan = goal == "plan";
   s->landing.pose_levelling = read.real("landing_pose_levelling");
 }
 

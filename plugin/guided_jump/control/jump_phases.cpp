@@ -156,6 +156,8 @@ void JumpController::startThrust(const pronk_robot_state& s) {
     planned_flight_time_ = std::max(0.05, flight.landingTime(standing_height_ + settings_.landing_height).value_or(0.0));
     planned_touchdown_yaw_ = std::atan2(heading_(1, 0), heading_(0, 0)) + orientation_->liftOffRpy().z() +
                              orientation_->liftOffRpyRate().z() * planned_flight_time_;
+    const Eigen::Vector3d touchdown = origin_ + heading_ * flight.position(planned_flight_time_);
+    planned_rest_ = touchdown.head<2>() + landingStop(settings_.landing, heading_ * flight.velocity(planned_flight_time_));
   }
   for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
   thrust_feet_.resize(3, feet_);
@@ -288,6 +290,7 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   // I the whole body's locked-joint inertia now (none from a host before ABI 1.2).
   Eigen::Vector3d acc = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
   if (settings_.feedforward != Feedforward::kGravity && running) acc = a_ref;
+  if (settings_.thrust_velocity_gain > 0 && running) acc += settings_.thrust_velocity_gain * (v_ref - vec(s.com_velocity));
   if (angular_feedforward && momentum) {
     const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
     moment = momentum->inertia * alpha_plan + w_plan.cross(momentum->inertia * w_plan);
@@ -335,6 +338,18 @@ void JumpController::landingReference(const pronk_robot_state& s) {
   Eigen::Vector3d trunk_des = centroid + R_des * stance_offset_;
   if (down > 0) trunk_des.z() = ground / down + stance_offset_.z();
   if (down > 0 && settings_.landing.track_sink && touchdown_com_) trunk_des.z() += verticalStopSink(s.time - phase_start_);
+  if (down > 0 && settings_.landing.track_stop > 0 && touchdown_com_) {
+    // The stop's path: the exponential from the touchdown point to the goal (with
+    // the touchdown goal, the critically damped stop of the speed the impact left).
+    const Eigen::Vector2d goal = touchdown_com_->head<2>();
+    const Eigen::Vector2d com_on_path =
+        goal - (goal - touchdown_xy_) * std::exp(-settings_.landing.frequency * (s.time - phase_start_));
+    // A CoM the feet's friction could not stop on the path lags it: led by at most
+    // track_stop, the legs do not push the trunk away over feet they cannot step from.
+    Eigen::Vector2d lead = com_on_path - vec(s.com_position).head<2>();
+    if (lead.norm() > settings_.landing.track_stop) lead *= settings_.landing.track_stop / lead.norm();
+    trunk_des.head<2>() = vec(s.base_position).head<2>() + lead;
+  }
   for (int f = 0; f < feet_; ++f) {
     if (s.foot_in_contact[f]) {
       const Eigen::Vector3d target = R_des.transpose() * (vec(s.foot_position + 3 * f) - trunk_des);
@@ -537,8 +552,14 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     if (any_contact && s.com_velocity[2] <= 0.0) {
       // The CoM comes to rest landingStop() beyond the touchdown point: with that
       // goal the critically damped stop is a pure exponential, with no overshoot.
+      // landing_goal plan: at the plan's own rest point instead.
       touchdown_com_ = vec(s.com_position);
-      touchdown_com_->head<2>() += landingStop(settings_.landing, vec(s.com_velocity));
+      touchdown_xy_ = touchdown_com_->head<2>();
+      if (settings_.landing.goal_from_plan) {
+        touchdown_com_->head<2>() = planned_rest_;
+      } else {
+        touchdown_com_->head<2>() += landingStop(settings_.landing, vec(s.com_velocity));
+      }
       touchdown_sink_ = s.com_position[2] - (origin_.z() + settings_.landing_height + standing_height_);
       touchdown_sink_rate_ = s.com_velocity[2];
       enter(JumpPhase::kLanding, s.time);

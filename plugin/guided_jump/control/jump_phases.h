@@ -71,6 +71,20 @@ struct LandingSettings {
   double ground_reach = 0.01;  // m below the feet that are down, for a foot still in the air
   double vertical_frequency = 0.0;  // rad/s of the vertical stop (0: frequency)
   bool track_sink = false;          // the legs' reference follows the vertical stop's sink
+  // m: the legs' reference puts the CoM on the horizontal stop's path, at most
+  // this far ahead of the CoM, instead of the trunk over the feet (0: off). With
+  // the feet placed ahead where the stop ends, the trunk-over-feet reference pulls
+  // the trunk on towards them from the first instant, against the wrench's
+  // braking. A CoM the feet's friction could not stop on the path lags it; led
+  // further, the legs push the trunk away over feet they cannot step from and the
+  // robot hops (docs/results.md, "Session 30").
+  double track_stop = 0.0;
+  // The stop's goal is the plan's own rest point (its ballistic touchdown at the
+  // standing height plus the stop for the velocity there: where the planner aims
+  // the target) instead of the touchdown point plus the stop for the touchdown
+  // velocity. Legs that touch down early or a body that left a little fast then
+  // still stop where the plan said, within the friction the stop may ask.
+  bool goal_from_plan = false;
   // The descent's landing pose: its feet turn against the trunk's tilt by this
   // multiple of it (1: the feet as under a level trunk; 0: the trunk's frame).
   double pose_levelling = 1.0;
@@ -104,6 +118,10 @@ struct JumpSettings {
   // lift early, and the pair left pushes the body off pitching (docs/results.md,
   // "Session 28").
   double momentum_moment_friction = 0.0;
+  // Thrust: the feed-forward CoM acceleration also carries this gain times the
+  // CoM's velocity error against the plan (1/s; 0: off). The joint PD tracks the
+  // plan's leg poses, and the body leaves 0.9-1.07 of the planned speed.
+  double thrust_velocity_gain = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
   // none: the IK takes Newton steps on the host's kinematics. Set by the
@@ -255,11 +273,13 @@ class JumpController {
   double thrust_start_ = 0;
   bool all_down_seen_ = false;  // landing: every foot has touched down
   std::optional<Eigen::Vector3d> touchdown_com_;  // CoM at touchdown after a flight
+  Eigen::Vector2d touchdown_xy_ = Eigen::Vector2d::Zero();  // the CoM's horizontal position at touchdown
   double touchdown_sink_ = 0, touchdown_sink_rate_ = 0;  // CoM below its landing height, and its rate, at touchdown
   double standing_height_ = 0;  // CoM above the ground at the thrust start
   Eigen::Vector3d momentum_tilt_ = Eigen::Vector3d::Zero();  // thrust: rotation vector (world) added to R_des
   double last_thrust_time_ = 0;
   double planned_flight_time_ = 0.2;  // s, lift-off to touchdown
+  Eigen::Vector2d planned_rest_ = Eigen::Vector2d::Zero();  // world: where the plan's landing stops the CoM
   double planned_touchdown_yaw_ = 0;  // rad, world: the plan's lift-off yaw plus its yaw rate over the flight
   std::unique_ptr<jump::ThrustPlan> plan_;
   std::unique_ptr<jump::OrientationTrajectory> orientation_;
