@@ -120,7 +120,7 @@ struct JumpSettings {
   double momentum_moment_friction = 0.0;
   // Thrust: the feed-forward CoM acceleration also carries this gain times the
   // CoM's velocity error against the plan (1/s; 0: off). The joint PD tracks the
-  // plan's leg poses, and the body leaves 0.9-1.07 of the planned speed.
+  // plan's leg poses, and the body leaves 0.91-1.07 of the planned speed.
   double thrust_velocity_gain = 0.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
@@ -272,7 +272,9 @@ class JumpController {
   double phase_start_ = 0;
   double thrust_start_ = 0;
   bool all_down_seen_ = false;  // landing: every foot has touched down
-  std::optional<Eigen::Vector3d> touchdown_com_;  // CoM at touchdown after a flight
+  // The landing stop's goal after a flight: the CoM's touchdown height, and
+  // horizontally where the stop ends (landing.goal_from_plan: planned_rest_).
+  std::optional<Eigen::Vector3d> touchdown_com_;
   Eigen::Vector2d touchdown_xy_ = Eigen::Vector2d::Zero();  // the CoM's horizontal position at touchdown
   double touchdown_sink_ = 0, touchdown_sink_rate_ = 0;  // CoM below its landing height, and its rate, at touchdown
   double standing_height_ = 0;  // CoM above the ground at the thrust start
