@@ -592,6 +592,16 @@ TEST(JumpRuns, AToeThatBrushesTheGroundAfterLiftOffDoesNotStartTheLanding) {
     EXPECT_GT(landing, descend) << jump["target"].dump();
     EXPECT_EQ(jump["status"], "ok") << jump["target"].dump() << " " << jump["error_xy"];
   }
+  // The console's touchdown column sets the plan's touchdown beside the controller's
+  // (events.touchdown_time), not beside the brush.
+  const CommandRun r = pronk("run " + testScenario("aliengo_scuffs.xml") + " --policy ballistic");
+  for (const nlohmann::json& jump : jumps) {
+    char pair[32];
+    std::snprintf(pair, sizeof pair, "%5.3f/%5.3f", jump["events"]["planned_touchdown_time"].get<double>(),
+                  jump["events"]["touchdown_time"].get<double>());
+    EXPECT_NE(r.output.find(pair), std::string::npos) << pair << "\n" << r.output;
+  }
+  EXPECT_NE(r.output.find("touchdown s: planned_touchdown_time / touchdown_time"), std::string::npos) << r.output;
 }
 
 // Runs a one-target test scenario with the ballistic policy, expects its jump

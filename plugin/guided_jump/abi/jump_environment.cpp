@@ -569,8 +569,10 @@ const MetricTable& metricTable() {
     const Plain plain[] = {
         {"planned_lift_off_time", PRONK_METRIC_TIME, "s", "the plan's lift-off", "lift-off s", "lift_off"},
         {"planned_apex_time", PRONK_METRIC_TIME, "s", "the plan's apex", "apex s", "apex_time"},
+        // Beside the controller's touchdown, not the host's first contact: a toe that
+        // brushes the ground just after lift-off is a contact but not the landing.
         {"planned_touchdown_time", PRONK_METRIC_TIME, "s", "the plan's touchdown on the target's surface",
-         "touchdown s", "touchdown"},
+         "touchdown s", "touchdown_time"},
         {"predicted_landing_x", PRONK_METRIC_VALUE, "m", "the plan's CoM landing point, start frame", "pred. x m",
          nullptr},
         {"predicted_landing_y", PRONK_METRIC_VALUE, "m", "the plan's CoM landing point, start frame", "pred. y m",
