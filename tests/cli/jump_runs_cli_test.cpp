@@ -464,8 +464,8 @@ TEST(JumpRuns, TheAliengosBackwardJumpsLeaveOnTimeWhenTheLastFeetDoNotCarryTheWe
   // (the Aliengo task's unsupported) every foot is up within a few ms of the
   // planned lift-off and each lands standing within 6 cm (measured 3.5, 1.4 and
   // 5.0 cm; docs/results.md, "Session 24"). Both arms on the landing they were
-  // measured with (the Aliengo task's heading landing, longer legs and the stop at the
-  // plan came later).
+  // measured with (the Aliengo task's heading landing and longer legs came later, and
+  // so may the stop at the plan).
   const std::string landing = kAliengoSession30Stop +
                               " --param landing_yaw_gain=0 --param landing_yaw_damping=0.4 --param landing_extension=0";
   auto late = [](const nlohmann::json& jump) {
