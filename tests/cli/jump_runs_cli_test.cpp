@@ -574,7 +574,10 @@ TEST(JumpRuns, AToeThatBrushesTheGroundAfterLiftOffDoesNotStartTheLanding) {
   // stop pulled the flight back: 21.5, 30.1 and 38.6 cm off. The landing now
   // waits for a contact with the CoM no longer rising; each lands within the
   // paper's 0.2 m (measured 5.6, 15.4 and 10.6 cm; docs/results.md, "Session 28").
-  const auto jumps = runTestScenario("aliengo_scuffs.xml", "jump_aliengo_scuffs", "", 3u).second;
+  const std::string dir = outDir("jump_aliengo_scuffs");
+  const CommandRun r = pronk("run " + testScenario("aliengo_scuffs.xml") + " --policy ballistic --out " + dir);
+  const nlohmann::json jumps = results(dir);
+  ASSERT_EQ(jumps.size(), 3u) << r.output;
   for (const nlohmann::json& jump : jumps) {
     double lift_off = -1, brush = -1, descend = -1, landing = -1;
     for (const nlohmann::json& e : jump["event_log"]) {
@@ -594,7 +597,6 @@ TEST(JumpRuns, AToeThatBrushesTheGroundAfterLiftOffDoesNotStartTheLanding) {
   }
   // The console's touchdown column sets the plan's touchdown beside the controller's
   // (events.touchdown_time), not beside the brush.
-  const CommandRun r = pronk("run " + testScenario("aliengo_scuffs.xml") + " --policy ballistic");
   for (const nlohmann::json& jump : jumps) {
     char pair[32];
     std::snprintf(pair, sizeof pair, "%5.3f/%5.3f", jump["events"]["planned_touchdown_time"].get<double>(),
