@@ -275,5 +275,23 @@ TEST(LandingStop, FrictionTakesMuTimesTheVerticalSpeedAndTheRestStopsOverOneOver
   EXPECT_THROW(landingStopOffset({1.0, 0.0, -1.0}, 0.6, 0.0), std::invalid_argument);
 }
 
+TEST(LandingExtension, TheStrokeKneesThatSaturateNeedBeyondTheStancePose) {
+  // Four knees of 40 N m at a 0.1 m lever hold 1600 N; 20 kg decelerate at
+  // 80 - 9.81 = 70.19 m/s^2. A fall of 1.44 legs of 0.5 m takes 1.44 g / a =
+  // 0.2013 legs of stroke, under the stance pose's 0.22: no extension.
+  EXPECT_EQ(landingExtension(0.5, 0.1, 40.0, 20.0, 9.81, 4), 0.0);
+  // Twice the mass: a = 30.19 m/s^2, 0.4679 legs of stroke, 0.2479 more than the
+  // stance gives, 0.124 m of 0.5 m legs.
+  const double heavy = landingExtension(0.5, 0.1, 40.0, 40.0, 9.81, 4);
+  EXPECT_NEAR(heavy, 0.5 * (1.44 * 9.81 / (1600.0 / 40.0 - 9.81) - 0.22), 1e-12);
+  EXPECT_NEAR(heavy, 0.124, 1e-3);
+  // It scales with the legs: the same knees per weight and lever per leg.
+  EXPECT_NEAR(landingExtension(1.0, 0.2, 80.0, 40.0, 9.81, 4), 2.0 * heavy, 1e-12);
+  // Knees that cannot hold the weight get the most the landing pose allows.
+  EXPECT_EQ(landingExtension(0.5, 0.1, 1.0, 40.0, 9.81, 4), 0.5 * kMaxLandingExtension);
+  EXPECT_THROW(landingExtension(0.5, 0.0, 40.0, 20.0, 9.81, 4), std::invalid_argument);
+  EXPECT_THROW(landingExtension(0.5, 0.1, 40.0, -1.0, 9.81, 4), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pronk::jump

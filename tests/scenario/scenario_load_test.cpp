@@ -125,8 +125,8 @@ TEST(ShippedScenarios, AliengoStandLoadsWithExpectedValues) {
   EXPECT_EQ(s.name, "aliengo_stand");
   EXPECT_EQ(s.platform.name, "aliengo");
   EXPECT_EQ(s.platform.urdf, (tree.root() / "assets/robots/aliengo/aliengo.urdf").string());
-  EXPECT_EQ(s.platform.joints.kp, 60);
-  EXPECT_EQ(s.platform.joints.kd, 4.5);
+  EXPECT_EQ(s.platform.joints.kp, 150);
+  EXPECT_EQ(s.platform.joints.kd, 4);
   expectStandSettings(s);
 }
 

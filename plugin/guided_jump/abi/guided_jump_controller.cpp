@@ -34,7 +34,7 @@ pronk_status create(const pronk_host_api* host, const pronk_param_value* params,
     const std::vector<pronk_param_decl>& decls = controllerParamDecls();
     const ParamReader read(params, param_count, decls.data(), static_cast<int32_t>(decls.size()));
     JumpSettings settings = readJumpSettings(read);
-    if (settings.exact_leg_ik) settings.legs = legGeometryFromHost(host, nullptr);
+    settings.legs = legGeometryFromHost(host, nullptr);
     *instance = new JumpController(host, settings);
   });
 }

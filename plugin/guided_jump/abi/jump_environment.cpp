@@ -57,11 +57,10 @@ struct EnvironmentSettings {
   double duration = 1.5;
   jump::ActionRanges ranges;
   jump::RewardSettings reward;
-  double apex_clearance = 0.0;
   bool workspace_check = true;
   double max_speed_shortfall = 0.1;
   double knee_clearance = 0.01;
-  double sideways_roll_gain = 0.0, sideways_roll_rate_gain = 0.0;
+  double sideways_roll_rate_gain = 0.0;
   // As set (13 numbers each), or empty: derived from the robot's leg length once
   // the host is known (deriveFromRobot).
   std::vector<double> action_min, action_max;
@@ -124,11 +123,9 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   }
   s.reward.error_scale = read.real("error_scale");
   s.reward.raw_action_limit = s.ranges.raw_limit;
-  s.apex_clearance = read.real("apex_clearance");
   s.workspace_check = read.integer("workspace_check") != 0;
   s.max_speed_shortfall = read.real("max_speed_shortfall");
   s.knee_clearance = read.real("knee_clearance");
-  s.sideways_roll_gain = read.real("sideways_roll_gain");
   s.sideways_roll_rate_gain = read.real("sideways_roll_rate_gain");
   return s;
 }
@@ -226,7 +223,6 @@ class JumpEnvironment {
     config.gravity = gravity_;
     config.start_com = Eigen::Vector3d(0, 0, standing_height_);
     config.standing_com_height = standing_height_;
-    config.sideways_roll_gain = settings_.sideways_roll_gain;
     config.sideways_roll_rate_gain = settings_.sideways_roll_rate_gain;
     if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
     jump::JumpTarget target;
@@ -289,7 +285,6 @@ class JumpEnvironment {
     // The safety filter: nothing runs that cannot work.
     jump::SafetyCheck ballistic;
     ballistic.gravity = gravity_;
-    ballistic.apex_clearance = settings_.apex_clearance;
     const std::optional<jump::LegWorkspace> ws = workspace();
     const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, ws);
     if (safety.speed_shortfall) metric("predicted_speed_shortfall", *safety.speed_shortfall);
@@ -302,7 +297,7 @@ class JumpEnvironment {
     js.action.assign(physical.begin(), physical.end());
     js.azimuth = azimuth;
     js.landing_height = target.z();
-    if (js.exact_leg_ik) js.legs = legs_;
+    js.legs = legs_;
     controller_ = std::make_unique<JumpController>(host_, js);
   }
 

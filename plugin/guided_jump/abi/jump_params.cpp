@@ -34,45 +34,31 @@ const pronk_param_decl kHoldParamDecls[] = {
 };
 
 // The phase machine's (control/jump_phases.h), both factories.
+// The planned acceleration in the feed-forward: the PD alone lags a hard thrust
+// (measured on the Go1's 0.7 m jump: 0.2 m/s short at lift-off, 11 cm off
+// instead of 3; docs/method.md).
+const pronk_param_decl kFeedforward = {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "dynamic", "",
+                                       kFeedforwardDoc};
 const pronk_param_decl kStartDelay = {kDeclSize, "start_delay", PRONK_PARAM_REAL, 0, 0.0, 60.0, 0, "0.2", "s",
                                       "standing time before the thrust"};
 const pronk_param_decl kFlightKpDivision = {kDeclSize, "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3",
                                             "", "Kp is divided by this from lift-off to touchdown"};
 const pronk_param_decl kMomentumGain = {
-    kDeclSize, "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "1/s",
-    "thrust: the trunk turns against the touchdown attitude error the whole-body angular momentum predicts, at this "
-    "rate per rad/s (0: off, the paper's)"};
-const pronk_param_decl kMomentumYawShare = {
-    kDeclSize, "momentum_yaw_share", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "1", "",
-    "thrust: the share of the momentum feedback about the vertical (1: all three axes; 0: roll and pitch only)"};
+    kDeclSize, "momentum_gain", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "10", "1/s",
+    "thrust: the trunk turns against the touchdown roll and pitch error the whole-body angular momentum predicts, at "
+    "this rate per rad/s (0: the paper's kinematic thrust)"};
 const pronk_param_decl kMomentumMomentGain = {
-    kDeclSize, "momentum_moment_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "1/s",
+    kDeclSize, "momentum_moment_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "50", "1/s",
     "thrust: a moment about the vertical of this gain times the whole-body angular momentum error (planned I w "
-    "minus L) joins the feed-forward wrench (0: off)"};
+    "minus L) joins the feed-forward wrench (0: the paper's)"};
 const pronk_param_decl kMomentumMomentFriction = {
-    kDeclSize, "momentum_moment_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0", "",
+    kDeclSize, "momentum_moment_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0.6", "",
     "thrust: that moment only as far as the feet's feed-forward forces stay within this friction coefficient "
     "(0: all of it)"};
-const pronk_param_decl kThrustVelocityGain = {
-    kDeclSize, "thrust_velocity_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "1/s",
-    "thrust: the feet's feed-forward wrench also asks for this gain times the CoM's velocity error against the plan "
-    "(m (a_ref + g_v (v_ref - v) - g); 0: off)"};
-const pronk_param_decl kLegIk = {
-    kDeclSize, "leg_ik", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "exact", "",
-    "the controller's leg IK: exact (the planner's analytic IK on the host's leg model, Newton steps where it has "
-    "none) or newton (6 damped Newton steps on the host's kinematics, the old path; a quarter of a jump's time)"};
 const pronk_param_decl kStanceFeet = {
     kDeclSize, "stance_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "anchored", "",
     "thrust: each stance foot's IK target is where it stood when the thrust began (anchored: a foot the thrust "
     "unloads presses back down) or where it is now (measured, the paper's)"};
-const pronk_param_decl kLandingFeet = {
-    kDeclSize, "landing_feet", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "all", "",
-    "landing: once every foot has touched down, the body wrench is shared by all the feet (all) or only by those "
-    "in contact now (contact, the controller before session 16)"};
-const pronk_param_decl kThrustEnd = {
-    kDeclSize, "thrust_end", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "supported", "",
-    "thrust: from the plan's end until the last foot leaves, the feet still down hold the plan's end point and "
-    "carry the robot's weight (supported) or hold it by joint PD alone (unsupported)"};
 // The landing's body wrench (control/jump_phases.h, LandingSettings), both factories.
 const pronk_param_decl kLandingParamDecls[] = {
     {kDeclSize, "landing_frequency", PRONK_PARAM_REAL, 0, 0.1, 100.0, 0, "5", "rad/s",
@@ -83,36 +69,21 @@ const pronk_param_decl kLandingParamDecls[] = {
      "landing: trunk levelling stiffness per kg of the robot's mass"},
     {kDeclSize, "landing_tilt_damping", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0.4", "N m s/rad/kg",
      "landing: trunk levelling damping per kg of the robot's mass"},
-    {kDeclSize, "landing_yaw_damping", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0.4", "N m s/rad/kg",
+    {kDeclSize, "landing_yaw_damping", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "1.5", "N m s/rad/kg",
      "landing: damping of the trunk's turn about the vertical per kg of the robot's mass"},
-    {kDeclSize, "landing_yaw_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "0", "N m/rad/kg",
+    {kDeclSize, "landing_yaw_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "10", "N m/rad/kg",
      "landing: stiffness per kg of the robot's mass that turns the trunk to the plan's touchdown heading (0: off)"},
-    {kDeclSize, "landing_extension", PRONK_PARAM_REAL, 0, 0.0, 0.3, 0, "0", "m",
-     "landing: the descent's landing pose reaches this far below the stance feet, for a longer stroke (0: the stance "
-     "pose)"},
-    {kDeclSize, "landing_ground_reach", PRONK_PARAM_REAL, 0, 0.0, 0.5, 0, "0.01", "m",
-     "landing: a foot still in the air reaches this far below the feet that are down"},
-    {kDeclSize, "landing_vertical_frequency", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "0", "rad/s",
-     "landing: natural frequency of the CoM's critically damped vertical stop (0: landing_frequency)"},
-    {kDeclSize, "landing_pose_levelling", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "1", "",
+    {kDeclSize, "landing_extension", PRONK_PARAM_REAL, 0, -1.0, 0.3, 0, "-1", "m",
+     "landing: the descent's landing pose reaches this far below the stance feet, for the stroke saturated knees "
+     "need to stop a fall (-1: derived from the robot's knee effort, mass and legs; 0: the stance pose)"},
+    {kDeclSize, "landing_vertical_frequency", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "10", "rad/s",
+     "landing: natural frequency of the CoM's critically damped vertical stop, which the legs' reference follows "
+     "down (0: landing_frequency)"},
+    {kDeclSize, "landing_pose_levelling", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "1.5", "",
      "descent: the landing pose's feet turn against the trunk's tilt by this multiple of it (1: as under a level "
      "trunk; above 1 further, as the trunk turns against the legs' swing; 0: the pose in the trunk's frame)"},
-    {kDeclSize, "landing_track_sink", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "0", "",
-     "landing: 1: the legs' reference height follows the vertical stop's sink from the touchdown state; 0: the "
-     "standing height at once"},
-    {kDeclSize, "landing_goal", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "touchdown", "",
-     "landing: where the horizontal stop brings the CoM: touchdown (the touchdown point plus the stop's distance "
-     "for the touchdown velocity) or plan (the plan's own: its ballistic touchdown at the standing height plus the "
-     "stop for the velocity there, the point the planner aims at the target)"},
-    {kDeclSize, "landing_track_stop", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
-     "landing: the legs' reference places the CoM on the horizontal stop's path from the touchdown state, at most "
-     "this far ahead of the CoM (0: off, the trunk over the feet at once)"},
 };
 
-// Both factories too, but each with its own default (see the lists below).
-pronk_param_decl feedforwardDecl(const char* default_value) {
-  return {kDeclSize, "feedforward", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, default_value, "", kFeedforwardDoc};
-}
 
 }  // namespace
 
@@ -125,21 +96,14 @@ const std::vector<pronk_param_decl>& controllerParamDecls() {
                  "empty: hold the stance; or the 13 physical jump parameters T_th r_p theta_p r_v theta_v "
                  "k d roll pitch yaw roll_rate pitch_rate yaw_rate (s, m, rad, m/s, rad, 1, m, rad, rad/s)"});
     d.push_back(kStartDelay);
-    // The paper's gravity compensation alone, so that the controller on its own
-    // reproduces the paper's thrust; the environment defaults to dynamic.
-    d.push_back(feedforwardDecl("gravity"));
+    d.push_back(kFeedforward);
     d.push_back(kFlightKpDivision);
     d.push_back({kDeclSize, "landing_height", PRONK_PARAM_REAL, 0, -5.0, 5.0, 0, "0", "m",
                  "the landing surface's height above the take-off surface (when the legs extend)"});
     d.push_back(kMomentumGain);
-    d.push_back(kMomentumYawShare);
     d.push_back(kMomentumMomentGain);
     d.push_back(kMomentumMomentFriction);
-    d.push_back(kThrustVelocityGain);
-    d.push_back(kLegIk);
     d.push_back(kStanceFeet);
-    d.push_back(kLandingFeet);
-    d.push_back(kThrustEnd);
     d.insert(d.end(), std::begin(kLandingParamDecls), std::end(kLandingParamDecls));
     return d;
   }();
@@ -152,20 +116,12 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
     const std::vector<pronk_param_decl> own = {
         {kDeclSize, "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s", "episode length, from reset"},
         kStartDelay,
-        // The planned acceleration in the feed-forward: the PD alone lags a hard
-        // thrust (measured on the Go1's 0.7 m jump: 0.2 m/s short at lift-off, 11 cm
-        // off instead of 3; docs/results.md). The controller keeps the paper's gravity.
-        feedforwardDecl("dynamic"),
+        kFeedforward,
         kFlightKpDivision,
         kMomentumGain,
-        kMomentumYawShare,
         kMomentumMomentGain,
         kMomentumMomentFriction,
-        kThrustVelocityGain,
-        kLegIk,
         kStanceFeet,
-        kLandingFeet,
-        kThrustEnd,
         // Empty: derived from the robot (action_mapping.h, scaledActionRanges).
         {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
          "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
@@ -182,8 +138,6 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
          "scaled by the robot's leg length over the Go1's 0.426 m (the paper's Aliengo: 0.20 0.60)"},
         {kDeclSize, "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
          "sigma_e of the landing reward exp(-e / sigma_e)"},
-        {kDeclSize, "apex_clearance", PRONK_PARAM_REAL, 0, 0.0, 1.0, 0, "0", "m",
-         "safety filter: the CoM apex must clear the target's standing CoM height by this"},
         {kDeclSize, "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
          "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
         {kDeclSize, "knee_clearance", PRONK_PARAM_REAL, 0, -1.0, 1.0, 0, "0.01", "m",
@@ -192,12 +146,9 @@ const std::vector<pronk_param_decl>& environmentParamDecls() {
         {kDeclSize, "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
          "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
          "torque check, under the 'motor' model)"},
-        {kDeclSize, "sideways_roll_gain", PRONK_PARAM_REAL, 0, -2.0, 2.0, 0, "0", "rad/(m/s)",
-         "planner: lift-off roll per m/s of lift-off velocity across the trunk (leans into the roll a sideways "
-         "push leaves the trunk with; 0: off)"},
         {kDeclSize, "sideways_roll_rate_gain", PRONK_PARAM_REAL, 0, -10.0, 10.0, 0, "1.5", "1/m",
          "planner: lift-off roll rate (rad/s) per m/s of lift-off velocity across the trunk, clamped into the "
-         "roll rate range (0: off, the planner before it)"},
+         "roll rate range (0: none)"},
     };
     d.insert(d.end(), own.begin(), own.end());
     d.insert(d.end(), std::begin(kLandingParamDecls), std::end(kLandingParamDecls));
@@ -222,46 +173,21 @@ void readCommonJumpSettings(const ParamReader& read, JumpSettings* s) {
   s->feedforward = feedforwardFromName(read.string("feedforward"));
   s->flight_kp_division = read.real("flight_kp_division");
   s->momentum_gain = read.real("momentum_gain");
-  s->momentum_yaw_share = read.real("momentum_yaw_share");
   s->momentum_moment_gain = read.real("momentum_moment_gain");
   s->momentum_moment_friction = read.real("momentum_moment_friction");
-  s->thrust_velocity_gain = read.real("thrust_velocity_gain");
-  const std::string ik = read.string("leg_ik");
-  if (ik != "exact" && ik != "newton") {
-    throw InvalidArgument("parameter 'leg_ik': '" + ik + "' is neither exact nor newton");
-  }
-  s->exact_leg_ik = ik == "exact";
   const std::string feet = read.string("stance_feet");
   if (feet != "anchored" && feet != "measured") {
     throw InvalidArgument("parameter 'stance_feet': '" + feet + "' is neither anchored nor measured");
   }
   s->anchored_stance_feet = feet == "anchored";
-  const std::string landing = read.string("landing_feet");
-  if (landing != "all" && landing != "contact") {
-    throw InvalidArgument("parameter 'landing_feet': '" + landing + "' is neither all nor contact");
-  }
-  s->landing_all_feet = landing == "all";
-  const std::string thrust_end = read.string("thrust_end");
-  if (thrust_end != "supported" && thrust_end != "unsupported") {
-    throw InvalidArgument("parameter 'thrust_end': '" + thrust_end + "' is neither supported nor unsupported");
-  }
-  s->supported_thrust_end = thrust_end == "supported";
   s->landing.frequency = read.real("landing_frequency");
   s->landing.friction = read.real("landing_friction");
   s->landing.tilt = read.real("landing_tilt_gain");
   s->landing.tilt_damping = read.real("landing_tilt_damping");
   s->landing.yaw_damping = read.real("landing_yaw_damping");
   s->landing.yaw_gain = read.real("landing_yaw_gain");
-  s->landing.ground_reach = read.real("landing_ground_reach");
   s->landing.extension = read.real("landing_extension");
   s->landing.vertical_frequency = read.real("landing_vertical_frequency");
-  s->landing.track_sink = read.integer("landing_track_sink") != 0;
-  s->landing.track_stop = read.real("landing_track_stop");
-  const std::string goal = read.string("landing_goal");
-  if (goal != "touchdown" && goal != "plan") {
-    throw InvalidArgument("parameter 'landing_goal': '" + goal + "' is neither touchdown nor plan");
-  }
-  s->landing.goal_from_plan = goal == "plan";
   s->landing.pose_levelling = read.real("landing_pose_levelling");
 }
 

@@ -97,6 +97,21 @@ JumpController::JumpController(const pronk_host_api* host, const JumpSettings& s
   commanded_ = Eigen::VectorXd::Zero(n_);
   jacobian_.resize(3, 6 + n_);
   if (!std::isfinite(settings.azimuth)) throw InvalidArgument("the jump azimuth is not finite");
+  if (settings_.landing.extension < 0.0) settings_.landing.extension = derivedLandingExtension();
+}
+
+double JumpController::derivedLandingExtension() const {
+  if (!settings_.legs || feet_ != jump::kLegCount || !(gravity_.norm() > 0.0) || !(mass_ > 0.0)) return 0.0;
+  const Eigen::Vector3d stance(settings_.hold.stance[0], settings_.hold.stance[1], settings_.hold.stance[2]);
+  double length = 0.0, lever = 0.0, effort = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < feet_; ++f) {
+    const jump::LegGeometry& leg = (*settings_.legs)[f];
+    length += (leg.thigh_length + leg.calf_length) / feet_;
+    lever += std::abs(jump::footPosition(leg, stance).x() - jump::kneePosition(leg, stance).x()) / feet_;
+    effort = std::min(effort, motors_[3 * f + 2].effort);
+  }
+  if (!(lever > 0.0) || !std::isfinite(effort)) return 0.0;  // knees that hold any load need no extension
+  return jump::landingExtension(length, lever, effort, mass_, gravity_.norm(), feet_);
 }
 
 void JumpController::enter(JumpPhase phase, double time, const std::string& detail) {
@@ -156,8 +171,6 @@ void JumpController::startThrust(const pronk_robot_state& s) {
     planned_flight_time_ = std::max(0.05, flight.landingTime(standing_height_ + settings_.landing_height).value_or(0.0));
     planned_touchdown_yaw_ = std::atan2(heading_(1, 0), heading_(0, 0)) + orientation_->liftOffRpy().z() +
                              orientation_->liftOffRpyRate().z() * planned_flight_time_;
-    const Eigen::Vector3d touchdown = origin_ + heading_ * flight.position(planned_flight_time_);
-    planned_rest_ = touchdown.head<2>() + landingStop(settings_.landing, heading_ * flight.velocity(planned_flight_time_));
   }
   for (int j = 0; j < n_; ++j) q_ref_(j) = s.q[j];
   thrust_feet_.resize(3, feet_);
@@ -262,7 +275,7 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   if (settings_.momentum_gain > 0 && momentum) {
     if (const std::optional<Eigen::Vector3d> body = averageRate(*momentum)) {
       Eigen::Vector3d extra = settings_.momentum_gain * ((w_ref - *body) - momentum_tilt_ / planned_flight_time_);
-      extra.z() *= settings_.momentum_yaw_share;
+      extra.z() = 0.0;  // the vertical goes to the feet (momentum_moment_gain)
       momentum_tilt_ += (s.time - last_thrust_time_) * extra;
       w_ref += extra;
     }
@@ -290,7 +303,6 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
   // I the whole body's locked-joint inertia now (none from a host before ABI 1.2).
   Eigen::Vector3d acc = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
   if (settings_.feedforward != Feedforward::kGravity && running) acc = a_ref;
-  if (settings_.thrust_velocity_gain > 0 && running) acc += settings_.thrust_velocity_gain * (v_ref - vec(s.com_velocity));
   if (angular_feedforward && momentum) {
     const Eigen::Vector3d alpha_plan = heading_ * orientation_->angularAccelerationWorld(tc);
     moment = momentum->inertia * alpha_plan + w_plan.cross(momentum->inertia * w_plan);
@@ -303,7 +315,7 @@ void JumpController::thrustTorques(const pronk_robot_state& s, double t, double*
     moment += twist;
   }
   jointTorques(s, settings_.hold.kp, q_ref_, qd_ref_,
-               settings_.hold.gravity_compensation && (running || settings_.supported_thrust_end), acc, moment, torque);
+               settings_.hold.gravity_compensation && running, acc, moment, torque);
 }
 
 Eigen::Vector2d JumpController::landingStop(const LandingSettings& landing, const Eigen::Vector3d& v) {
@@ -337,19 +349,7 @@ void JumpController::landingReference(const pronk_robot_state& s) {
   }
   Eigen::Vector3d trunk_des = centroid + R_des * stance_offset_;
   if (down > 0) trunk_des.z() = ground / down + stance_offset_.z();
-  if (down > 0 && settings_.landing.track_sink && touchdown_com_) trunk_des.z() += verticalStopSink(s.time - phase_start_);
-  if (down > 0 && settings_.landing.track_stop > 0 && touchdown_com_) {
-    // The stop's path: the exponential from the touchdown point to the goal (with
-    // the touchdown goal, the critically damped stop of the speed the impact left).
-    const Eigen::Vector2d goal = touchdown_com_->head<2>();
-    const Eigen::Vector2d com_on_path =
-        goal - (goal - touchdown_xy_) * std::exp(-settings_.landing.frequency * (s.time - phase_start_));
-    // A CoM the feet's friction could not stop on the path lags it: led by at most
-    // track_stop, the legs do not push the trunk away over feet they cannot step from.
-    Eigen::Vector2d lead = com_on_path - vec(s.com_position).head<2>();
-    if (lead.norm() > settings_.landing.track_stop) lead *= settings_.landing.track_stop / lead.norm();
-    trunk_des.head<2>() = vec(s.base_position).head<2>() + lead;
-  }
+  if (down > 0 && touchdown_com_) trunk_des.z() += verticalStopSink(s.time - phase_start_);
   for (int f = 0; f < feet_; ++f) {
     if (s.foot_in_contact[f]) {
       const Eigen::Vector3d target = R_des.transpose() * (vec(s.foot_position + 3 * f) - trunk_des);
@@ -360,7 +360,7 @@ void JumpController::landingReference(const pronk_robot_state& s) {
       // and down to the level of the feet that are down (a trunk that sits pitched
       // would otherwise keep one foot hanging above the ground for good).
       Eigen::Vector3d reach = R_des * stance_feet_.col(f);
-      if (down > 0) reach.z() = std::min(reach.z(), ground / down - settings_.landing.ground_reach - s.base_position[2]);
+      if (down > 0) reach.z() = std::min(reach.z(), ground / down - kGroundReach - s.base_position[2]);
       q_ref_.segment<3>(3 * f) = legIk(f, R.transpose() * reach);
     }
   }
@@ -448,7 +448,7 @@ void JumpController::landingTorques(const pronk_robot_state& s, double kp, doubl
     // A foot that touches with no load flickers in and out of contact; left out
     // of the wrench, it stays unloaded, and the robot balances on the other
     // side's feet until it tips over them (docs/results.md).
-    applyBodyWrench(s, force, moment, tau, settings_.landing_all_feet && all_down_seen_);
+    applyBodyWrench(s, force, moment, tau, all_down_seen_);
   }
   saturate(s, tau);
 }
@@ -552,14 +552,8 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     if (any_contact && s.com_velocity[2] <= 0.0) {
       // The CoM comes to rest landingStop() beyond the touchdown point: with that
       // goal the critically damped stop is a pure exponential, with no overshoot.
-      // landing_goal plan: at the plan's own rest point instead.
       touchdown_com_ = vec(s.com_position);
-      touchdown_xy_ = touchdown_com_->head<2>();
-      if (settings_.landing.goal_from_plan) {
-        touchdown_com_->head<2>() = planned_rest_;
-      } else {
-        touchdown_com_->head<2>() += landingStop(settings_.landing, vec(s.com_velocity));
-      }
+      touchdown_com_->head<2>() += landingStop(settings_.landing, vec(s.com_velocity));
       touchdown_sink_ = s.com_position[2] - (origin_.z() + settings_.landing_height + standing_height_);
       touchdown_sink_rate_ = s.com_velocity[2];
       enter(JumpPhase::kLanding, s.time);
@@ -580,7 +574,9 @@ void JumpController::compute(const pronk_robot_state& s, double* torque) {
     if (phase_ == JumpPhase::kFlight && s.com_velocity[2] < 0.0 && timeToTouchdown() <= kBlendTime + kExtensionLead) {
       const double a = smoothstep((s.time - phase_start_) / kBlendTime);
       for (int j = 0; j < n_; ++j) blend_from_(j) = blend_from_(j) + a * (settings_.tuck[j % 3] - blend_from_(j));
-      enter(JumpPhase::kDescend, s.time);
+      char detail[80];
+      std::snprintf(detail, sizeof detail, "landing pose %.3f m below the stance feet", settings_.landing.extension);
+      enter(JumpPhase::kDescend, s.time, detail);
     }
     const double a = smoothstep((s.time - phase_start_) / kBlendTime);
     Eigen::VectorXd goal(n_);

@@ -11,7 +11,6 @@
 //              height over the feet (IK for the feet in contact, the stance joints for the others),
 //              Kp back from Kp / division to Kp over kLandingRamp; gravity compensation over
 //              the feet in contact, and over all four once every foot has touched down
-//              (landing_all_feet)
 //
 // Thrust and explosive (t = time since the thrust began). The plan lives in the
 // start frame S: origin on the ground below the CoM at the thrust start, z up, x
@@ -22,13 +21,17 @@
 //   q_ref     = IK(foot_des)                    Newton steps on the host's leg kinematics
 //   qd_ref    = J(q_ref)^-1 R_des^T (-(v_ref + w_ref x (p_foot - trunk_des)))
 //   tau       = Kp (q_ref - q) + Kd (qd_ref - qd) - sum_contact J_i^T f_i, clamped
-// with f = G^+ (m (a - g), M): a = 0, M = 0 for feedforward "gravity" (the paper's);
+// with f = G^+ (m (a - g), M) while the plan runs: a = 0, M = 0 for feedforward "gravity" (the paper's);
 // a = a_ref, M = 0 for "dynamic"; for "dynamic_angular" also M = I alpha_plan +
 // w_plan x I w_plan, the orientation plan's rate of angular momentum (I the whole
-// body's locked-joint inertia now, host ABI 1.2). With momentum_gain g > 0, R_des and w_ref also carry a turn at
+// body's locked-joint inertia now, host ABI 1.2). With momentum_gain g > 0, R_des and w_ref also carry a turn
+// about the horizontal axes at
 //   g ((w_ref - I^-1 L) - tilt / T_f)           (whole-body momentum, host ABI 1.2)
-// that drives the touchdown attitude error the momentum predicts to zero. After the
-// plan has ended the reference stays at its end point (no velocity) until lift-off;
+// that drives the touchdown roll and pitch error the momentum predicts to zero; the
+// error about the vertical goes to the feet as a ground moment (momentum_moment_gain).
+// After the plan has ended the reference stays at its end point (no velocity) until
+// lift-off, held by joint PD alone (the one or two feet still down do not carry the
+// weight, which would turn the robot about them as it leaves);
 // without lift-off within kLiftOffWait the jump is abandoned and the controller lands
 // (stance) in place.
 //
@@ -66,32 +69,20 @@ struct LandingSettings {
   double friction = 0.6;       // the share of the normal force the stop may ask sideways
   double tilt = 4.0;           // N m / rad / kg: levelling stiffness
   double tilt_damping = 0.4;   // N m s / rad / kg: levelling damping
-  double yaw_damping = 0.4;    // N m s / rad / kg: damping of the turn about the vertical
-  double yaw_gain = 0.0;       // N m / rad / kg: towards the plan's touchdown heading
-  double ground_reach = 0.01;  // m below the feet that are down, for a foot still in the air
-  double vertical_frequency = 0.0;  // rad/s of the vertical stop (0: frequency)
-  bool track_sink = false;          // the legs' reference follows the vertical stop's sink
-  // m: the legs' reference puts the CoM on the horizontal stop's path, at most
-  // this far ahead of the CoM, instead of the trunk over the feet (0: off). With
-  // the feet placed ahead where the stop ends, the trunk-over-feet reference pulls
-  // the trunk on towards them from the first instant, against the wrench's
-  // braking. A CoM the feet's friction could not stop on the path lags it; led
-  // further, the legs push the trunk away over feet they cannot step from and the
-  // robot hops (docs/results.md, "Session 30").
-  double track_stop = 0.0;
-  // The stop's goal is the plan's own rest point (its ballistic touchdown at the
-  // standing height plus the stop for the velocity there: where the planner aims
-  // the target) instead of the touchdown point plus the stop for the touchdown
-  // velocity. Legs that touch down early or a body that left a little fast then
-  // still stop where the plan said, within the friction the stop may ask.
-  bool goal_from_plan = false;
+  double yaw_damping = 1.5;    // N m s / rad / kg: damping of the turn about the vertical
+  double yaw_gain = 10.0;      // N m / rad / kg: towards the plan's touchdown heading
+  // rad/s of the vertical stop (0: frequency), which the legs' reference follows
+  // down: with the reference at the standing height at once, the compressed legs
+  // throw the robot back into the air.
+  double vertical_frequency = 10.0;
   // The descent's landing pose: its feet turn against the trunk's tilt by this
   // multiple of it (1: the feet as under a level trunk; 0: the trunk's frame).
-  double pose_levelling = 1.0;
+  double pose_levelling = 1.5;
   // m the descent's landing pose reaches below the stance feet: a leg that
   // touches down longer has more stroke to stop the fall in before a thigh
-  // comes down to the ground (0: the stance pose).
-  double extension = 0.0;
+  // comes down to the ground (0: the stance pose). Below 0: derived from the
+  // robot (jump::landingExtension; 0 without an analytic leg model).
+  double extension = -1.0;
 };
 
 struct JumpSettings {
@@ -99,46 +90,29 @@ struct JumpSettings {
   std::vector<double> action;        // empty: hold the stance; else 13 physical numbers (ActionParameter order)
   double azimuth = 0.0;              // rad: the jump plane's direction in the start frame (from the target)
   double start_delay = 0.2;          // s of standing before the thrust
-  Feedforward feedforward = Feedforward::kGravity;
+  Feedforward feedforward = Feedforward::kDynamic;
   double flight_kp_division = 3.0;   // Kp in flight and descent = kp / this
   double landing_height = 0.0;       // m: the landing surface above the take-off surface
   // Thrust: the trunk turns against the whole-body attitude error predicted for the
   // touchdown, (w_plan - I^-1 L) T_f minus the turn already added, at this rate per
-  // rad/s (1/s; 0: off, the paper's kinematic thrust). Needs a host with ABI 1.2.
-  double momentum_gain = 0.0;
-  // The share of that feedback about the world's vertical (1: all of it). On long
-  // turning jumps the vertical part asks the thrust for more twist than the
-  // saturated legs give and the body leaves pitching nose-down (docs/results.md).
-  double momentum_yaw_share = 1.0;
+  // rad/s (1/s; 0: off, the paper's kinematic thrust), about the horizontal axes
+  // only: about the vertical it asks the thrust for more twist than the saturated
+  // legs give and the body leaves pitching nose-down. Needs a host with ABI 1.2.
+  double momentum_gain = 10.0;
   // Thrust: a moment about the world's vertical of this gain times the whole-body
   // momentum error (I w_plan - L)_z joins the feet's feed-forward wrench (1/s; 0: off).
-  double momentum_moment_gain = 0.0;
+  double momentum_moment_gain = 50.0;
   // That moment only as far as the feet's forces for the feed-forward wrench stay
   // within this friction coefficient (0: all of it). Past the cone the feet slip,
-  // lift early, and the pair left pushes the body off pitching (docs/results.md,
-  // "Session 28").
-  double momentum_moment_friction = 0.0;
-  // Thrust: the feed-forward CoM acceleration also carries this gain times the
-  // CoM's velocity error against the plan (1/s; 0: off). The joint PD tracks the
-  // plan's leg poses, and the body leaves 0.91-1.07 of the planned speed.
-  double thrust_velocity_gain = 0.0;
+  // lift early, and the pair left pushes the body off pitching.
+  double momentum_moment_friction = 0.6;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
   // The analytic leg model (from the host's kinematics, abi/host_leg_geometry.h);
-  // none: the IK takes Newton steps on the host's kinematics. Set by the
-  // factories when exact_leg_ik (parameter leg_ik).
-  bool exact_leg_ik = true;
+  // none: the IK takes Newton steps on the host's kinematics.
   // Thrust: each stance foot's IK target is where that foot stood when the thrust
   // began (true), or where it is now (false, the paper's). A foot the thrust has
   // unloaded then presses back down instead of floating with its leg.
   bool anchored_stance_feet = true;
-  // Landing: once every foot has touched down, the body wrench is shared by all
-  // the feet, not only those the host reports in contact now (false: those).
-  bool landing_all_feet = true;
-  // Thrust, from the plan's end until the last foot leaves the ground: the feet
-  // still down carry the robot's weight (true), or hold the plan's end point by
-  // joint PD alone (false). Carried by the last foot or two, the weight turns
-  // the robot about them as it leaves (docs/method.md).
-  bool supported_thrust_end = true;
   std::optional<std::array<jump::LegGeometry, jump::kLegCount>> legs;
   LandingSettings landing;
 };
@@ -189,6 +163,7 @@ class JumpController {
   static constexpr double kExtensionLead = 0.06;  // s: the landing extension ends this long before touchdown
   static constexpr double kLiftOffWait = 0.15;  // s after the plan's end before giving up on lift-off
   static constexpr double kLandingRamp = 0.3;   // s from touchdown until Kp is fully back
+  static constexpr double kGroundReach = 0.01;  // m below the feet that are down, for a foot still in the air
 
   // Where the landing brings the CoM to rest, from the touchdown point
   // (jump::landingStopOffset with the landing's friction share and frequency).
@@ -213,6 +188,9 @@ class JumpController {
   const Eigen::VectorXd& commandedTorque() const { return commanded_; }
 
  private:
+  // landing.extension for a robot whose settings leave it to the robot
+  // (jump::landingExtension from its legs, knee efforts and mass).
+  double derivedLandingExtension() const;
   void enter(JumpPhase phase, double time, const std::string& detail = "");
   void startThrust(const pronk_robot_state& s);
   void landingReference(const pronk_robot_state& s);
@@ -273,15 +251,13 @@ class JumpController {
   double thrust_start_ = 0;
   bool all_down_seen_ = false;  // landing: every foot has touched down
   // The landing stop's goal after a flight: the CoM's touchdown height, and
-  // horizontally where the stop ends (landing.goal_from_plan: planned_rest_).
+  // horizontally where the stop ends.
   std::optional<Eigen::Vector3d> touchdown_com_;
-  Eigen::Vector2d touchdown_xy_ = Eigen::Vector2d::Zero();  // the CoM's horizontal position at touchdown
   double touchdown_sink_ = 0, touchdown_sink_rate_ = 0;  // CoM below its landing height, and its rate, at touchdown
   double standing_height_ = 0;  // CoM above the ground at the thrust start
   Eigen::Vector3d momentum_tilt_ = Eigen::Vector3d::Zero();  // thrust: rotation vector (world) added to R_des
   double last_thrust_time_ = 0;
   double planned_flight_time_ = 0.2;  // s, lift-off to touchdown
-  Eigen::Vector2d planned_rest_ = Eigen::Vector2d::Zero();  // world: where the plan's landing stops the CoM
   double planned_touchdown_yaw_ = 0;  // rad, world: the plan's lift-off yaw plus its yaw rate over the flight
   std::unique_ptr<jump::ThrustPlan> plan_;
   std::unique_ptr<jump::OrientationTrajectory> orientation_;

@@ -230,4 +230,15 @@ Eigen::Vector2d landingStopOffset(const Eigen::Vector3d& v, double friction, dou
   return horizontal / speed * left / frequency;
 }
 
+double landingExtension(double leg_length, double knee_lever, double knee_effort, double mass, double gravity,
+                        int legs) {
+  if (!(leg_length > 0.0) || !(knee_lever > 0.0) || !(knee_effort > 0.0) || !(mass > 0.0) || !(gravity > 0.0) ||
+      legs <= 0) {
+    throw std::invalid_argument("landingExtension: every length, the effort, the mass and gravity must be > 0");
+  }
+  const double deceleration = legs * knee_effort / (mass * knee_lever) - gravity;
+  if (!(deceleration > 0.0)) return leg_length * kMaxLandingExtension;  // the knees cannot hold the weight
+  return leg_length * std::clamp(kLandingFallHeight * gravity / deceleration - kStanceStroke, 0.0, kMaxLandingExtension);
+}
+
 }  // namespace pronk::jump

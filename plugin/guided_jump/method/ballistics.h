@@ -162,4 +162,23 @@ class LiftOffHyperbola {
 // velocity. Zero when friction takes it all. friction >= 0, frequency > 0.
 Eigen::Vector2d landingStopOffset(const Eigen::Vector3d& touchdown_velocity, double friction, double frequency);
 
+// How much longer than they stand the legs touch down, so that knees that
+// saturate through the stop still have the stroke to stop the fall. In the
+// stance pose the knees hold the body with at most
+//   a = legs tau_knee / (m lever) - g
+// of deceleration (lever: the foot's horizontal distance from the knee).
+// Stopping a fall from kLandingFallHeight leg lengths at a takes
+// kLandingFallHeight g / a leg lengths of stroke; the stance pose gives
+// kStanceStroke of them before a thigh nears the ground, and the legs touch
+// down longer by the rest, at most kMaxLandingExtension leg lengths. The two
+// constants put the Go1 (a = 65 m/s^2) at 0 and the Aliengo (32 m/s^2) at
+// 0.11 m, each robot's measured best (docs/method.md, "Legs that touch down
+// longer than they stand"). All lengths in m, effort N m, mass kg, gravity
+// m/s^2 (its magnitude), all > 0.
+constexpr double kLandingFallHeight = 1.44;   // leg lengths: the Go1's 0.4 m drop from 0.2 m above
+constexpr double kStanceStroke = 0.22;        // leg lengths
+constexpr double kMaxLandingExtension = 0.5;  // leg lengths
+double landingExtension(double leg_length, double knee_lever, double knee_effort, double mass, double gravity,
+                        int legs);
+
 }  // namespace pronk::jump

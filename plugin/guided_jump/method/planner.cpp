@@ -309,11 +309,9 @@ PlannedJump planCandidate(const JumpTarget& target, const PlannerConfig& cfg, co
   }
   // Roll compensation, from the lift-off velocity across the trunk's lift-off heading.
   const double v_side = -std::sin(yaw_lo) * m.velocity.x() + std::cos(yaw_lo) * m.velocity.y();
-  const ParameterRange& roll_r = ranges[P::kLiftOffRoll];
   const ParameterRange& roll_rate_r = ranges[P::kLiftOffRollRate];
-  const double roll = std::clamp(cfg.sideways_roll_gain * v_side, roll_r.min, roll_r.max);
   const double roll_rate = std::clamp(cfg.sideways_roll_rate_gain * v_side, roll_rate_r.min, roll_rate_r.max);
-  a.liftoff_rpy_rad = {roll, 0.0, yaw_lo};
+  a.liftoff_rpy_rad = {0.0, 0.0, yaw_lo};
   a.liftoff_rpy_rate_radps = {roll_rate, 0.0, yaw_rate};
 
   // Feasibility, first failure wins.

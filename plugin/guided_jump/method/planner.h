@@ -101,10 +101,9 @@ struct PlannerConfig {
   // Roll compensation: a push with a component across the trunk (at its
   // lift-off heading) leaves the ground with the trunk rolling away from the
   // jump, and it lands rolled (docs/method-planner.md, step 6). The lift-off
-  // roll (rad) and roll rate (rad/s) lean into it in proportion to that
-  // component v_side (m/s): roll = sideways_roll_gain v_side, roll rate =
-  // sideways_roll_rate_gain v_side, each clamped into its range. 0: off.
-  double sideways_roll_gain = 0.0;
+  // roll rate (rad/s) leans into it in proportion to that component v_side
+  // (m/s): roll rate = sideways_roll_rate_gain v_side, clamped into its range.
+  // 0: off.
   double sideways_roll_rate_gain = 0.0;  // the jump environment's default: 1.5
   // Vertical (in-place) jumps: apex this far above max(lift-off, target) CoM height.
   double in_place_apex_rise_m = 0.10;
