@@ -74,6 +74,22 @@ TEST(IncludeRules, PluginsSeeOnlyThePluginAbiHeader) {
   }
 }
 
+TEST(IncludeRules, TheJumpPluginsLayersPointDown) {
+  // plugin/guided_jump: abi/ (the C callbacks, the host view, the declaration
+  // tables) -> control/ (the phase machine and its phases) -> method/ (the
+  // paper's pipeline). control/ and method/ never include abi/, method/ never
+  // control/.
+  const std::string root = "plugin/guided_jump/";
+  for (const std::string layer : {"control", "method"}) {
+    const std::vector<Include> includes = includesUnder(root + layer);
+    ASSERT_FALSE(includes.empty()) << layer;
+    for (const Include& i : includes) {
+      EXPECT_NE(i.header.rfind("abi/", 0), 0u) << where(i);
+      if (layer == "method") EXPECT_NE(i.header.rfind("control/", 0), 0u) << where(i);
+    }
+  }
+}
+
 TEST(IncludeRules, RenderReadsTracesAndModelsNotTheSimulation) {
   // Video is made from traces: the renderer needs trace/ and model/ (robot
   // description, terrain) and the scenario's plain structs, never a World;

@@ -6,15 +6,10 @@
 #include <exception>
 #include <stdexcept>
 
+#include "control/invalid_argument.h"
 #include "pronk/plugin_abi.h"
 
 namespace pronk::guided_jump {
-
-// A caller mistake (bad argument, call out of order): PRONK_ERROR_INVALID_ARGUMENT.
-class InvalidArgument : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
 
 inline void writeError(char* error, size_t error_size, const char* message) {
   if (error && error_size > 0) std::snprintf(error, error_size, "%s", message ? message : "");

@@ -1,6 +1,6 @@
 // Controller `guided_jump`: with no `action` it holds the stance (control/hold_controller.h);
 // with an action it jumps: stand, thrust, explosive, flight, descend, landing
-// (control/jump_phases.h).
+// (control/jump_controller.h).
 #include <new>
 #include <vector>
 
@@ -8,9 +8,9 @@
 #include "abi/factories.h"
 #include "abi/host_leg_geometry.h"
 #include "abi/jump_params.h"
-#include "abi/plugin_params.h"
+#include "control/param_reader.h"
 #include "control/hold_controller.h"
-#include "control/jump_phases.h"
+#include "control/jump_controller.h"
 
 namespace pronk::guided_jump {
 namespace {
@@ -19,9 +19,8 @@ JumpController* self(void* instance) { return static_cast<JumpController*>(insta
 
 JumpSettings readJumpSettings(const ParamReader& read) {
   JumpSettings s;
-  s.hold = readHoldSettings(read);
+  JumpSettings::read(read, &s);
   s.action = read.vector("action");
-  readCommonJumpSettings(read, &s);
   s.landing_height = read.real("landing_height");
   return s;
 }

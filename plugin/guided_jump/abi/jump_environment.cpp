@@ -8,7 +8,7 @@
 //                    anything moves: a flight whose apex stays below the target,
 //                    a thrust path that loses a foot's reach, or one the motors
 //                    cannot push, is rejected (PRONK_REJECTED, with why);
-//   step():          the guided_jump phase machine (control/jump_phases.h);
+//   step():          the guided_jump phase machine (control/jump_controller.h);
 //   finish():        the paper's reward with every term reported as a metric
 //                    (method/reward.h), plus the plan's predictions;
 //   prior_action():  the analytic ballistic planner (method/planner.h) as raw
@@ -30,8 +30,9 @@
 #include "abi/factories.h"
 #include "abi/host_leg_geometry.h"
 #include "abi/jump_params.h"
-#include "abi/plugin_params.h"
-#include "control/jump_phases.h"
+#include "control/param_reader.h"
+#include "control/jump_controller.h"
+#include "control/robot_state.h"
 #include "method/action_mapping.h"
 #include "method/ballistics.h"
 #include "method/orientation_trajectory.h"
@@ -97,8 +98,7 @@ void deriveFromRobot(EnvironmentSettings* s, const std::optional<std::array<jump
 
 EnvironmentSettings readSettings(const ParamReader& read) {
   EnvironmentSettings s;
-  s.jump.hold = readHoldSettings(read);
-  readCommonJumpSettings(read, &s.jump);
+  JumpSettings::read(read, &s.jump);
   s.duration = read.real("duration");
   // Filled in and checked once the robot is known (deriveFromRobot).
   s.action_min = read.vector("action_min");
@@ -129,8 +129,6 @@ EnvironmentSettings readSettings(const ParamReader& read) {
   s.sideways_roll_rate_gain = read.real("sideways_roll_rate_gain");
   return s;
 }
-
-Eigen::Vector3d vec(const double* p) { return {p[0], p[1], p[2]}; }
 
 Eigen::Quaterniond quaternionOf(const pronk_robot_state& s) {
   return Eigen::Quaterniond(s.base_quaternion[0], s.base_quaternion[1], s.base_quaternion[2], s.base_quaternion[3])
@@ -231,7 +229,7 @@ class JumpEnvironment {
     // Aimed short by where the controller's landing will stop the CoM.
     const LandingSettings& landing = settings_.jump.landing;
     const jump::PlannedJump plan = jump::planPriorJump(
-        target, config, [&landing](const Eigen::Vector3d& v) { return JumpController::landingStop(landing, v); });
+        target, config, [&landing](const Eigen::Vector3d& v) { return LandingPhase::landingStop(landing, v); });
     if (!plan.feasible && host_->log) {
       host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + plan.reason).c_str());
     }

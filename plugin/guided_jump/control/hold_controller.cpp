@@ -7,10 +7,49 @@
 #include <stdexcept>
 #include <string>
 
-#include "abi/abi_boundary.h"
+#include "control/invalid_argument.h"
 #include "method/force_distribution.h"
 
 namespace pronk::guided_jump {
+
+namespace {
+constexpr uint32_t kDeclSize = sizeof(pronk_param_decl);
+}  // namespace
+
+const std::vector<pronk_param_decl>& HoldSettings::parameters() {
+  // Defaults from the platform (ABI 1.5); the Go1's for a host before 1.5.
+  static const std::vector<pronk_param_decl> decls = {
+      {kDeclSize, "kp", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "100", "N m/rad",
+       "joint stiffness towards the stance (default: the platform's <joints kp>)", "kp"},
+      {kDeclSize, "kd", PRONK_PARAM_REAL, 0, 0.0, 100.0, 0, "2", "N m s/rad",
+       "joint damping (default: the platform's <joints kd>)", "kd"},
+      {kDeclSize, "stance", PRONK_PARAM_VECTOR, 0, -3.2, 3.2, 3, "0 0.75 -1.5", "rad",
+       "joint positions held by every leg: hip, thigh, calf (default: the platform's <initial stance>)", "stance"},
+      {kDeclSize, "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
+       "1: feet in contact carry the weight through J^T f; 0: PD only"},
+      {kDeclSize, "motor", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "effort", "",
+       "joint motors: effort (the URDF effort limit at any speed) or dc (torque falls linearly with speed to none "
+       "at the URDF velocity limit, the paper's DC motor)"},
+  };
+  return decls;
+}
+
+HoldSettings HoldSettings::read(const ParamReader& read) {
+  HoldSettings s;
+  s.kp = read.real("kp");
+  s.kd = read.real("kd");
+  const std::vector<double> stance = read.vector("stance");
+  s.stance = {stance[0], stance[1], stance[2]};
+  s.gravity_compensation = read.integer("gravity_compensation") != 0;
+  s.motor = motorModelFromName(read.string("motor"));
+  return s;
+}
+
+jump::MotorModel motorModelFromName(const std::string& name) {
+  if (name == "dc") return jump::MotorModel::kDcMotor;
+  if (name == "effort") return jump::MotorModel::kEffortBox;
+  throw InvalidArgument("parameter 'motor': '" + name + "' is neither dc nor effort");
+}
 
 std::vector<jump::MotorLimits> motorLimitsFromHost(const pronk_host_api* host, int joint_count) {
   std::vector<jump::MotorLimits> motors(static_cast<size_t>(joint_count));

@@ -9,10 +9,12 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "control/param_reader.h"
 #include "method/motor_model.h"
 #include "pronk/plugin_abi.h"
 
@@ -24,7 +26,15 @@ struct HoldSettings {
   std::array<double, 3> stance{0, 0.75, -1.5};  // rad per leg: hip, thigh, calf
   bool gravity_compensation = true;
   jump::MotorModel motor = jump::MotorModel::kEffortBox;
+
+  // kp, kd, stance (the platform's by default, ABI 1.5), gravity_compensation, motor.
+  static const std::vector<pronk_param_decl>& parameters();
+  // Throws InvalidArgument naming the parameter for a value it does not know.
+  static HoldSettings read(const ParamReader& read);
 };
+
+// "dc" or "effort"; throws InvalidArgument naming the parameter for any other name.
+jump::MotorModel motorModelFromName(const std::string& name);
 
 // Each joint's effort and velocity limits from the host (infinity where the
 // model gives none).

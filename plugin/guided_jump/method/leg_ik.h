@@ -1,8 +1,8 @@
-// Leg IK for the planner and the safety filter: the thrust path's reach and its
-// joint torques and speeds. (The paper's "Control" maps the CoM/trunk reference
-// to joints by IK too; pronk's controller does that with Newton steps on the
-// host's leg kinematics, JumpController::legIk, which this exact solution does
-// not replace: see there.)
+// Leg IK for the planner, the safety filter and the controller: the thrust
+// path's reach and its joint torques and speeds, and the joints' references (the
+// paper's "Control" maps the CoM/trunk reference to joints by IK too;
+// control/leg_drive.h, LegDrive::legIk, falls back to Newton steps on the host's
+// leg kinematics where this exact solution has no answer).
 // Analytic kinematics of a Unitree-style 3-DoF leg, everything in ONE frame,
 // the trunk frame (x forward, y left, z up, origin at the trunk centre):
 //

@@ -190,7 +190,7 @@ PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config = Pla
 
 // Where the landing brings the CoM to rest, horizontally, from its touchdown
 // point, for the CoM velocity at touchdown (the controller's landing:
-// landingStopOffset with its gains, control/jump_phases.h).
+// landingStopOffset with its gains, control/landing_phase.h).
 using LandingStop = std::function<Eigen::Vector2d(const Eigen::Vector3d& touchdown_velocity)>;
 
 // The jump environment's prior (`pronk run --policy ballistic`): planJump with

@@ -1,4 +1,4 @@
-#include "abi/plugin_params.h"
+#include "control/param_reader.h"
 
 #include <cerrno>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "abi/abi_boundary.h"
+#include "control/invalid_argument.h"
 
 namespace pronk::guided_jump {
 namespace {
