@@ -15,7 +15,4 @@ const pronk_factory* jumpEnvironmentFactory();
 void setNegotiatedAbiMinor(uint32_t minor);
 uint32_t negotiatedAbiMinor();
 
-// The control period both factories declare, s.
-constexpr double kControlPeriod = 0.001;
-
 }  // namespace pronk::guided_jump

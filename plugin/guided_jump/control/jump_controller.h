@@ -55,6 +55,9 @@ struct JumpSettings {
 enum class JumpPhase { kHold, kStand, kThrust, kExplosive, kFlight, kDescend, kLanding };
 const char* jumpPhaseName(JumpPhase phase);  // "hold", "stand", "thrust", ...
 
+// The control period the controller is written for (both factories declare it), s.
+constexpr double kControlPeriod = 0.001;
+
 class JumpController {
  public:
   static constexpr double kLiftOffWait = 0.15;  // s after the plan's end before giving up on lift-off
