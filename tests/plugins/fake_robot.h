@@ -80,6 +80,17 @@ class FakeRobot {
   }
 
   int32_t jointCount() const { return kFeet * joints_per_leg_; }
+
+  // A forward kinematics for api().foot_position_base that agrees with the
+  // constant leg Jacobians: foot = (hip corner) + A_f q_leg (the robot has none
+  // by default).
+  static pronk_status linearFootPositionBase(void*, int32_t f, const double* q, double p[3]) {
+    if (f < 0 || f >= kFeet) return PRONK_ERROR_INVALID_ARGUMENT;
+    const Eigen::Vector3d corner((f < 2 ? 0.2 : -0.2), (f % 2 == 0 ? -0.12 : 0.12), -0.3);
+    const Eigen::Vector3d v = corner + legJacobian(f) * Eigen::Map<const Eigen::Vector3d>(q + 3 * f);
+    for (int i = 0; i < 3; ++i) p[i] = v(i);
+    return PRONK_OK;
+  }
   const pronk_host_api& api() const { return api_; }
 
   // The joint block of foot f's Jacobian: constant, invertible, different per leg.

@@ -151,7 +151,8 @@ TEST_F(GuidedJumpController, PdTermAtAnOffsetPose) {
     robot_.q()[j] = stance[j % 3] + 0.01 * (j + 1) * (j % 2 ? 1 : -1);
     robot_.qd()[j] = 0.2 - 0.03 * j;
   }
-  auto c = make({{"kp", "50", {}}, {"kd", "3", {}}, {"stance", "0.1 0.8 -1.6", {}}, {"gravity_compensation", "0", {}}});
+  robot_.contact().fill(0);  // no foot carries weight: the PD alone
+  auto c = make({{"kp", "50", {}}, {"kd", "3", {}}, {"stance", "0.1 0.8 -1.6", {}}});
   const Eigen::VectorXd tau = torques(*c);
   for (int j = 0; j < robot_.jointCount(); ++j) {
     EXPECT_NEAR(tau(j), 50 * (stance[j % 3] - robot_.q()[j]) - 3 * robot_.qd()[j], 1e-12) << "joint " << j;
@@ -160,17 +161,20 @@ TEST_F(GuidedJumpController, PdTermAtAnOffsetPose) {
 
 TEST_F(GuidedJumpController, PdAndGravityCompensationAdd) {
   robot_.q()[4] = 0.6;  // thigh of leg 1, 0.15 rad from the default stance
-  auto pd_only = make({{"gravity_compensation", "0", {}}});
   auto both = make({});
   auto gravity_only = makeGravityOnly();
-  EXPECT_LT((torques(*both) - torques(*pd_only) - torques(*gravity_only)).norm(), 1e-9);
+  const Eigen::VectorXd sum = torques(*both), gravity = torques(*gravity_only);
+  robot_.contact().fill(0);  // in the air: the PD alone
+  const Eigen::VectorXd pd_only = torques(*both);
+  EXPECT_LT((sum - pd_only - gravity).norm(), 1e-9);
 }
 
 TEST_F(GuidedJumpController, TorquesAreClampedToEffortLimits) {
   for (int j = 0; j < robot_.jointCount(); ++j) robot_.effort()[j] = 5.0 + j;
   for (int j = 0; j < robot_.jointCount(); ++j) robot_.q()[j] = (j % 2 ? 1.0 : -1.0) + (j % 3 == 1 ? 0.75 : 0);
   robot_.q()[2] = -1.5 + 0.01;  // a small error: stays inside its limit
-  auto c = make({{"gravity_compensation", "0", {}}});
+  robot_.contact().fill(0);  // the PD alone
+  auto c = make({});
   const Eigen::VectorXd tau = torques(*c);
   for (int j = 0; j < robot_.jointCount(); ++j) {
     if (j == 2) {

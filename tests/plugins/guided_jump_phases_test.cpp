@@ -30,16 +30,8 @@ class GuidedJumpPhases : public ::testing::Test {
     path_ = lib.path();
     factory_ = registry_.find(PRONK_FACTORY_CONTROLLER, "guided_jump");
     ASSERT_NE(factory_, nullptr);
-    // The fake robot has no forward kinematics; give it a linear one that agrees
-    // with its constant leg Jacobians: foot = (hip corner) + A_f q_leg.
     api_ = robot_.api();
-    api_.foot_position_base = [](void*, int32_t f, const double* q, double p[3]) {
-      if (f < 0 || f >= FakeRobot::kFeet) return PRONK_ERROR_INVALID_ARGUMENT;
-      const Eigen::Vector3d corner((f < 2 ? 0.2 : -0.2), (f % 2 == 0 ? -0.12 : 0.12), -0.3);
-      const Eigen::Vector3d v = corner + FakeRobot::legJacobian(f) * Eigen::Map<const Eigen::Vector3d>(q + 3 * f);
-      for (int i = 0; i < 3; ++i) p[i] = v(i);
-      return PRONK_OK;
-    };
+    api_.foot_position_base = FakeRobot::linearFootPositionBase;
   }
 
   std::unique_ptr<ControllerInstance> make(const std::vector<ParamSetting>& settings) {
@@ -111,8 +103,9 @@ TEST_F(GuidedJumpPhases, DcMotorTorqueFallsWithJointSpeed) {
   robot_.qd()[1] = 10.0;   // along the push at half the no-load speed
   robot_.qd()[2] = -20.0;  // against the push, twice the no-load speed
   robot_.qd()[5] = 25.0;   // along the push, beyond the no-load speed
-  auto dc = make({{"motor", "dc", {}}, {"gravity_compensation", "0", {}}});
-  auto box = make({{"motor", "effort", {}}, {"gravity_compensation", "0", {}}});
+  robot_.contact().fill(0);  // the PD alone
+  auto dc = make({{"motor", "dc", {}}});
+  auto box = make({{"motor", "effort", {}}});
   dc->reset(robot_.state());
   box->reset(robot_.state());
   const Eigen::VectorXd t_dc = torques(*dc, robot_.state()), t_box = torques(*box, robot_.state());

@@ -30,14 +30,7 @@ class JumpPhaseUnit : public ::testing::Test {
  protected:
   void SetUp() override {
     api_ = robot_.api();
-    // A linear forward kinematics that agrees with the constant leg Jacobians.
-    api_.foot_position_base = [](void*, int32_t f, const double* q, double p[3]) {
-      if (f < 0 || f >= FakeRobot::kFeet) return PRONK_ERROR_INVALID_ARGUMENT;
-      const Eigen::Vector3d corner((f < 2 ? 0.2 : -0.2), (f % 2 == 0 ? -0.12 : 0.12), -0.3);
-      const Eigen::Vector3d v = corner + FakeRobot::legJacobian(f) * Eigen::Map<const Eigen::Vector3d>(q + 3 * f);
-      for (int i = 0; i < 3; ++i) p[i] = v(i);
-      return PRONK_OK;
-    };
+    api_.foot_position_base = FakeRobot::linearFootPositionBase;
     // The wrench alone: no PD.
     hold_.kp = 0.0;
     hold_.kd = 0.0;

@@ -128,7 +128,7 @@ TEST_F(ParamSchema, GuidedJumpDefaultsResolve) {
   EXPECT_EQ(*p.find("kp"), "60");
   EXPECT_EQ(*p.find("kd"), "2");
   EXPECT_EQ(*p.find("stance"), "0 0.75 -1.5");
-  EXPECT_EQ(*p.find("gravity_compensation"), "1");
+  EXPECT_EQ(*p.find("motor"), "effort");
   try {
     resolveParams(*f, {set("kp", "2000", 31)}, owner_);
     FAIL() << "no error";

@@ -63,10 +63,10 @@ TEST(PluginLoading, GuidedJumpPluginListsItsTwoFactories) {
   EXPECT_EQ(stance->type, static_cast<uint32_t>(PRONK_PARAM_VECTOR));
   EXPECT_EQ(stance->vector_size, 3u);
   EXPECT_STREQ(stance->default_value, "0 0.75 -1.5");
-  const pronk_param_decl* gc = paramOf(*controller, "gravity_compensation");
-  ASSERT_NE(gc, nullptr);
-  EXPECT_EQ(gc->type, static_cast<uint32_t>(PRONK_PARAM_INT));
-  EXPECT_STREQ(gc->default_value, "1");
+  const pronk_param_decl* motor = paramOf(*controller, "motor");
+  ASSERT_NE(motor, nullptr);
+  EXPECT_EQ(motor->type, static_cast<uint32_t>(PRONK_PARAM_STRING));
+  EXPECT_STREQ(motor->default_value, "effort");
 
   const pronk_factory* env = registry.find(PRONK_FACTORY_ENVIRONMENT, "jump");
   ASSERT_NE(env, nullptr);

@@ -130,7 +130,7 @@ const MetricTable& metricTable() {
         {"planned_flight_time", PRONK_METRIC_VALUE, "s", "the plan's flight from lift-off to the target's surface",
          nullptr, nullptr},
         {"planned_apex_height", PRONK_METRIC_VALUE, "m", "the plan's CoM apex above standing", nullptr, nullptr},
-        {"action_excess", PRONK_METRIC_VALUE, "1", "raw action beyond +-raw_limit, summed", nullptr, nullptr},
+        {"action_excess", PRONK_METRIC_VALUE, "1", "raw action beyond +-5 (the clip), summed", nullptr, nullptr},
         {"predicted_speed_shortfall", PRONK_METRIC_VALUE, "m/s",
          "the safety filter's torque check: lift-off speed the motors are predicted to miss", nullptr, nullptr},
         {"running_cost", PRONK_METRIC_VALUE, "1", "the reward's running (thrust) costs, summed", nullptr, nullptr},

@@ -25,8 +25,6 @@ const std::vector<pronk_param_decl>& HoldSettings::parameters() {
        "joint damping (default: the platform's <joints kd>)", "kd"},
       {kDeclSize, "stance", PRONK_PARAM_VECTOR, 0, -3.2, 3.2, 3, "0 0.75 -1.5", "rad",
        "joint positions held by every leg: hip, thigh, calf (default: the platform's <initial stance>)", "stance"},
-      {kDeclSize, "gravity_compensation", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
-       "1: feet in contact carry the weight through J^T f; 0: PD only"},
       {kDeclSize, "motor", PRONK_PARAM_STRING, 0, 1.0, -1.0, 0, "effort", "",
        "joint motors: effort (the URDF effort limit at any speed) or dc (torque falls linearly with speed to none "
        "at the URDF velocity limit, the paper's DC motor)"},
@@ -40,7 +38,6 @@ HoldSettings HoldSettings::read(const ParamReader& read) {
   s.kd = read.real("kd");
   const std::vector<double> stance = read.vector("stance");
   s.stance = {stance[0], stance[1], stance[2]};
-  s.gravity_compensation = read.integer("gravity_compensation") != 0;
   s.motor = motorModelFromName(read.string("motor"));
   return s;
 }
@@ -121,8 +118,7 @@ void HoldController::checkState(const pronk_robot_state& s) const {
 void HoldController::reset(const pronk_robot_state& state) {
   checkState(state);
   if (host_->emit_event) {
-    host_->emit_event(host_->host, state.time, "hold",
-                      settings_.gravity_compensation ? "stance PD + gravity compensation" : "stance PD");
+    host_->emit_event(host_->host, state.time, "hold", "stance PD + gravity compensation");
   }
 }
 
@@ -134,23 +130,21 @@ void HoldController::compute(const pronk_robot_state& s, double* torque) {
   Eigen::Map<Eigen::VectorXd> tau(torque, n);
   for (int j = 0; j < n; ++j) tau(j) = settings_.kp * (settings_.stance[j % 3] - q(j)) - settings_.kd * qd(j);
 
-  if (settings_.gravity_compensation) {
-    std::vector<int> contact;
-    for (int f = 0; f < foot_count_; ++f) {
-      if (s.foot_in_contact[f]) contact.push_back(f);
+  std::vector<int> contact;
+  for (int f = 0; f < foot_count_; ++f) {
+    if (s.foot_in_contact[f]) contact.push_back(f);
+  }
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
+  for (size_t i = 0; i < contact.size(); ++i) {
+    points.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::Vector3d>(s.foot_position + 3 * contact[i]);
+  }
+  const Eigen::Vector3d com(s.com_position[0], s.com_position[1], s.com_position[2]);
+  const Eigen::Matrix3Xd forces = jump::distributeWeight(points, com, mass_, gravity_);
+  for (size_t i = 0; i < contact.size(); ++i) {
+    if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
+      throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
     }
-    Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(contact.size()));
-    for (size_t i = 0; i < contact.size(); ++i) {
-      points.col(static_cast<Eigen::Index>(i)) = Eigen::Map<const Eigen::Vector3d>(s.foot_position + 3 * contact[i]);
-    }
-    const Eigen::Vector3d com(s.com_position[0], s.com_position[1], s.com_position[2]);
-    const Eigen::Matrix3Xd forces = jump::distributeWeight(points, com, mass_, gravity_);
-    for (size_t i = 0; i < contact.size(); ++i) {
-      if (host_->foot_jacobian_world(host_->host, contact[i], jacobian_.data()) != PRONK_OK) {
-        throw std::runtime_error("the host has no Jacobian for foot " + std::to_string(contact[i]));
-      }
-      tau -= jacobian_.rightCols(n).transpose() * forces.col(static_cast<Eigen::Index>(i));
-    }
+    tau -= jacobian_.rightCols(n).transpose() * forces.col(static_cast<Eigen::Index>(i));
   }
 
   for (int j = 0; j < n; ++j) {

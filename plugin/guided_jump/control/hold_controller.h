@@ -24,10 +24,9 @@ struct HoldSettings {
   double kp = 100;                          // N m/rad
   double kd = 2;                            // N m s/rad
   std::array<double, 3> stance{0, 0.75, -1.5};  // rad per leg: hip, thigh, calf
-  bool gravity_compensation = true;
   jump::MotorModel motor = jump::MotorModel::kEffortBox;
 
-  // kp, kd, stance (the platform's by default, ABI 1.5), gravity_compensation, motor.
+  // kp, kd, stance (the platform's by default, ABI 1.5), motor.
   static const std::vector<pronk_param_decl>& parameters();
   // Throws InvalidArgument naming the parameter for a value it does not know.
   static HoldSettings read(const ParamReader& read);

@@ -33,7 +33,7 @@
 namespace pronk::guided_jump {
 
 struct JumpSettings {
-  HoldSettings hold;                 // gains, stance (= landing pose), gravity compensation
+  HoldSettings hold;                 // gains, stance (= landing pose), motors
   std::vector<double> action;        // empty: hold the stance; else 13 physical numbers (ActionParameter order)
   double azimuth = 0.0;              // rad: the jump plane's direction in the start frame (from the target)
   double start_delay = 0.2;          // s of standing before the thrust

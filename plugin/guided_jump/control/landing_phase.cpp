@@ -125,7 +125,7 @@ void LandingPhase::wrenchTorques(const pronk_robot_state& s, const JumpPlan& pla
     ground += s.foot_position[3 * f + 2] - (std::isfinite(r) ? r : 0.0);
     ++down;
   }
-  if (down > 0 && drive_.hold().gravity_compensation) {
+  if (down > 0) {
     // The body wrench that stops the CoM where the landing model says, at the
     // standing height, with a level trunk: critically damped, friction-limited.
     const Eigen::Vector3d c = vec(s.com_position), v = vec(s.com_velocity);
@@ -175,7 +175,7 @@ void LandingPhase::compute(const pronk_robot_state& s, const JumpPlan& plan, dou
   if (!touchdown_com_) {  // no flight before (an abandoned jump): plain stance
     int down = 0;
     for (int f = 0; f < feet; ++f) down += s.foot_in_contact[f] ? 1 : 0;
-    drive_.jointTorques(s, kp, drive_.hold().gravity_compensation && all_down_seen_ && (down >= 3 || down == feet),
+    drive_.jointTorques(s, kp, all_down_seen_ && (down >= 3 || down == feet),
                         Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), torque);
     return;
   }

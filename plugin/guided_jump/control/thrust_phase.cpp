@@ -141,7 +141,7 @@ void ThrustPhase::compute(const pronk_robot_state& s, const JumpPlan& plan, doub
     if (settings_.momentum_moment_friction > 0) twist *= twistShareWithinFriction(s, acc, moment, twist);
     moment += twist;
   }
-  drive_.jointTorques(s, drive_.hold().kp, drive_.hold().gravity_compensation && running, acc, moment, torque);
+  drive_.jointTorques(s, drive_.hold().kp, running, acc, moment, torque);
 }
 
 }  // namespace pronk::guided_jump

@@ -60,7 +60,6 @@ EnvironmentSettings EnvironmentSettings::read(const ParamReader& read) {
                             " numbers; it takes 13, or none for the robot's own");
     }
   }
-  s.ranges.raw_limit = read.real("raw_limit");
   s.reward.friction_coefficient = read.real("friction_coefficient");
   const std::vector<double> band = read.vector("workspace_z");
   if (band.size() != 0 && band.size() != 2) {
@@ -74,7 +73,6 @@ EnvironmentSettings EnvironmentSettings::read(const ParamReader& read) {
   }
   s.reward.error_scale = read.real("error_scale");
   s.reward.raw_action_limit = s.ranges.raw_limit;
-  s.workspace_check = read.integer("workspace_check") != 0;
   s.max_speed_shortfall = read.real("max_speed_shortfall");
   s.knee_clearance = read.real("knee_clearance");
   s.sideways_roll_rate_gain = read.real("sideways_roll_rate_gain");
@@ -106,8 +104,6 @@ static const std::vector<pronk_param_decl> decls = {
        "robot's leg length (thigh + calf) over the Go1's 0.426 m"},
       {kDeclSize, "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
        "upper ends of the 13 action ranges; empty: derived as action_min"},
-      {kDeclSize, "raw_limit", PRONK_PARAM_REAL, 0, 0.01, 100.0, 0, "5", "",
-       "raw policy outputs are clipped to +-this before the affine map"},
       {kDeclSize, "friction_coefficient", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.8", "",
        "mu of the reward's friction-cone term"},
       {kDeclSize, "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 0, "", "m",
@@ -115,10 +111,8 @@ static const std::vector<pronk_param_decl> decls = {
        "scaled by the robot's leg length over the Go1's 0.426 m (the paper's Aliengo: 0.20 0.60)"},
       {kDeclSize, "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
        "sigma_e of the landing reward exp(-e / sigma_e)"},
-      {kDeclSize, "workspace_check", PRONK_PARAM_INT, 0, 0.0, 1.0, 0, "1", "",
-       "safety filter and planner: 1 keeps every stance foot reachable on the thrust path"},
       {kDeclSize, "knee_clearance", PRONK_PARAM_REAL, 0, -1.0, 1.0, 0, "0.01", "m",
-       "safety filter and planner (with workspace_check): every knee stays this far above its stance foot's "
+       "safety filter and planner (with a leg model): every knee stays this far above its stance foot's "
        "centre on the thrust path (-1: off)"},
       {kDeclSize, "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
        "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
@@ -136,7 +130,7 @@ JumpEnvironment::JumpEnvironment(const pronk_host_api* host, const EnvironmentSe
   HoldController check(host, settings.jump.hold);  // throws for a robot the controller cannot drive
   n_ = check.jointCount();
   feet_ = check.footCount();
-  if (!legs_ && settings.workspace_check && host->log) {
+  if (!legs_ && host->log) {
     host->log(host->host, 1, ("jump: no analytic leg model (" + no_legs + "); the planner and the safety filter do "
                               "not check the leg workspace")
                                  .c_str());
@@ -368,7 +362,7 @@ StartFrame JumpEnvironment::frame() const {
 }
 
 std::optional<jump::LegWorkspace> JumpEnvironment::workspace() const {
-  if (!legs_ || !settings_.workspace_check || feet_ != jump::kLegCount) return std::nullopt;
+  if (!legs_ || feet_ != jump::kLegCount) return std::nullopt;
   jump::LegWorkspace ws;
   ws.legs = *legs_;
   ws.feet = start_feet_;

@@ -2,7 +2,7 @@
 // (the paper's 13 jump parameters).
 //   observation (6): the target x, y, z (m), yaw, roll, pitch (rad), relative to
 //                    the start, in the robot's initial heading frame;
-//   action (13):     the policy's raw outputs, clipped to +-raw_limit and mapped
+//   action (13):     the policy's raw outputs, clipped to +-5 (the paper's) and mapped
 //                    affinely onto the action ranges (method/action_mapping.h);
 //   act():           the safety filter (method/safety_filter.h) runs before
 //                    anything moves: a flight whose apex stays below the target,
@@ -53,7 +53,6 @@ struct EnvironmentSettings {
   double duration = 1.5;
   jump::ActionRanges ranges;
   jump::RewardSettings reward;
-  bool workspace_check = true;
   double max_speed_shortfall = 0.1;
   double knee_clearance = 0.01;
   double sideways_roll_rate_gain = 0.0;
