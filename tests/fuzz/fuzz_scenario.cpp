@@ -39,8 +39,8 @@ void link(const fs::path& target, const fs::path& at) {
   fs::create_symlink(target, at);
 }
 
-// SANDBOX/t/s/b/input.xml is the input. From there "../platforms/go1.xml" and
-// "../../assets/..." (a shipped scenario's paths), "parts/platform.xml",
+// SANDBOX/t/s/b/input.xml is the input. From there "../platforms/go1.xml",
+// "../parts/jump.xml" and "../../assets/..." (a shipped scenario's paths), "parts/platform.xml",
 // "../data/tiny_robot.urdf" and "../../../scenarios/..." (a fixture's) all
 // reach the project's files.
 void makeSandbox() {
@@ -56,7 +56,7 @@ void makeSandbox() {
   link(source / "scenarios", g_sandbox / "scenarios");
   link(source / "assets", g_sandbox / "assets");
   link(source / "assets", g_sandbox / "t" / "assets");
-  for (const char* d : {"platforms", "go1", "aliengo", "eval", "train"}) link(source / "scenarios" / d, s / d);
+  for (const char* d : {"platforms", "parts", "go1", "aliengo", "eval", "train"}) link(source / "scenarios" / d, s / d);
   link(source / "tests" / "scenario" / "data", s / "data");
   link(source / "tests" / "scenario" / "broken" / "parts", s / "b" / "parts");
   link(source / "scenarios" / "go1" / "jump_environment.xml", s / "b" / "jump_environment.xml");

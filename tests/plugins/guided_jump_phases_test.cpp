@@ -76,7 +76,7 @@ TEST_F(GuidedJumpPhases, JumpParametersHaveDefaults) {
   EXPECT_EQ(*p.find("momentum_gain"), "10");
   EXPECT_EQ(*p.find("landing_vertical_frequency"), "10");
   EXPECT_EQ(*p.find("motor"), "effort");
-  EXPECT_EQ(*p.find("flight_kp_division"), "3");
+  EXPECT_EQ(*p.find("landing_extension"), "-1");
 }
 
 TEST_F(GuidedJumpPhases, ActionOfTheWrongSizeIsRefused) {

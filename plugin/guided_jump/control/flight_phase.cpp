@@ -17,8 +17,6 @@ constexpr uint32_t kDeclSize = sizeof(pronk_param_decl);
 
 const std::vector<pronk_param_decl>& FlightSettings::parameters() {
   static const std::vector<pronk_param_decl> decls = {
-      {kDeclSize, "flight_kp_division", PRONK_PARAM_REAL, 0, 1.0, 100.0, 0, "3", "",
-       "Kp is divided by this from lift-off to touchdown"},
       {kDeclSize, "landing_extension", PRONK_PARAM_REAL, 0, -1.0, 0.3, 0, "-1", "m",
        "descent: the landing pose reaches this far below the stance feet, for the stroke saturated knees need to stop "
        "a fall (-1: derived from the robot's knee effort, mass and legs; 0: the stance pose)"},
@@ -31,7 +29,6 @@ const std::vector<pronk_param_decl>& FlightSettings::parameters() {
 
 FlightSettings FlightSettings::read(const ParamReader& read) {
   FlightSettings s;
-  s.kp_division = read.real("flight_kp_division");
   s.extension = read.real("landing_extension");
   s.pose_levelling = read.real("landing_pose_levelling");
   return s;

@@ -1,5 +1,5 @@
 // The flight, from lift-off (every foot off the ground): a 0.1 s smoothstep to a
-// tucked pose at Kp / flight_kp_division, no gravity compensation; then the
+// tucked pose at Kp / 3 (the paper's), no gravity compensation; then the
 // descent, once the predicted fall to the landing surface is down to
 // kBlendTime + kExtensionLead: a 0.1 s smoothstep to the landing pose, which
 // ends kExtensionLead before touchdown. The landing pose is the stance's feet
@@ -22,7 +22,7 @@
 namespace pronk::guided_jump {
 
 struct FlightSettings {
-  double kp_division = 3.0;  // Kp in flight and descent = kp / this
+  double kp_division = 3.0;  // Kp in flight and descent = kp / this (the paper's 3)
   // The landing pose's feet turn against the trunk's tilt by this multiple of it
   // (1: the feet as under a level trunk; 0: the trunk's frame). In the air the
   // legs carry most of the roll inertia, and the trunk turns against their swing.
@@ -34,7 +34,7 @@ struct FlightSettings {
   double extension = -1.0;
   std::array<double, 3> tuck{0.0, 1.38, -2.4};  // rad per leg: flight pose (hip, thigh, calf)
 
-  // flight_kp_division, landing_extension, landing_pose_levelling.
+  // landing_extension, landing_pose_levelling.
   static const std::vector<pronk_param_decl>& parameters();
   static FlightSettings read(const ParamReader& read);
 };

@@ -57,7 +57,7 @@ JumpController::JumpController(const pronk_host_api* host, const JumpSettings& s
       landing_(drive_, settings.landing),
       flight_(drive_, settings.flight, landing_) {
   if (!(settings.flight.kp_division >= 1.0) || !std::isfinite(settings.flight.kp_division)) {
-    throw InvalidArgument("flight_kp_division must be >= 1");
+    throw InvalidArgument("the flight's Kp division must be >= 1");
   }
   if (!(settings.start_delay >= 0.0) || !std::isfinite(settings.start_delay)) {
     throw InvalidArgument("start_delay must be >= 0");

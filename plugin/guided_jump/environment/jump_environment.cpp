@@ -60,7 +60,6 @@ EnvironmentSettings EnvironmentSettings::read(const ParamReader& read) {
                             " numbers; it takes 13, or none for the robot's own");
     }
   }
-  s.reward.friction_coefficient = read.real("friction_coefficient");
   const std::vector<double> band = read.vector("workspace_z");
   if (band.size() != 0 && band.size() != 2) {
     throw InvalidArgument("parameter 'workspace_z' has " + std::to_string(band.size()) +
@@ -71,7 +70,6 @@ EnvironmentSettings EnvironmentSettings::read(const ParamReader& read) {
     s.reward.workspace_z_min = band[0];
     s.reward.workspace_z_max = band[1];
   }
-  s.reward.error_scale = read.real("error_scale");
   s.reward.raw_action_limit = s.ranges.raw_limit;
   s.max_speed_shortfall = read.real("max_speed_shortfall");
   s.knee_clearance = read.real("knee_clearance");
@@ -104,13 +102,9 @@ static const std::vector<pronk_param_decl> decls = {
        "robot's leg length (thigh + calf) over the Go1's 0.426 m"},
       {kDeclSize, "action_max", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
        "upper ends of the 13 action ranges; empty: derived as action_min"},
-      {kDeclSize, "friction_coefficient", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.8", "",
-       "mu of the reward's friction-cone term"},
       {kDeclSize, "workspace_z", PRONK_PARAM_VECTOR, 0, -10.0, 10.0, 0, "", "m",
        "trunk height band (2 numbers) of the reward's workspace term; empty: the paper's Go1 band 0.15 0.40 "
        "scaled by the robot's leg length over the Go1's 0.426 m (the paper's Aliengo: 0.20 0.60)"},
-      {kDeclSize, "error_scale", PRONK_PARAM_REAL, 0, 0.001, 10.0, 0, "0.1", "m",
-       "sigma_e of the landing reward exp(-e / sigma_e)"},
       {kDeclSize, "knee_clearance", PRONK_PARAM_REAL, 0, -1.0, 1.0, 0, "0.01", "m",
        "safety filter and planner (with a leg model): every knee stays this far above its stance foot's "
        "centre on the thrust path (-1: off)"},
