@@ -1,5 +1,6 @@
 #include "control/jump_controller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>

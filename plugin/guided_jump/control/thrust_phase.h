@@ -21,6 +21,7 @@
 // leaves (docs/method.md).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
