@@ -46,15 +46,14 @@ double FlightPhase::derivedExtension() const {
   }
   const std::array<double, 3>& q = drive_.hold().stance;
   const Eigen::Vector3d stance(q[0], q[1], q[2]);
-  double length = 0.0, lever = 0.0, effort = std::numeric_limits<double>::infinity();
+  double lever = 0.0, effort = std::numeric_limits<double>::infinity();
   for (int f = 0; f < feet; ++f) {
     const jump::LegGeometry& leg = (*drive_.legs())[f];
-    length += (leg.thigh_length + leg.calf_length) / feet;
     lever += std::abs(jump::footPosition(leg, stance).x() - jump::kneePosition(leg, stance).x()) / feet;
     effort = std::min(effort, drive_.motors()[3 * f + 2].effort);
   }
   if (!(lever > 0.0) || !std::isfinite(effort)) return 0.0;  // knees that hold any load need no extension
-  return jump::landingExtension(length, lever, effort, drive_.mass(), drive_.gravity().norm(), feet);
+  return jump::landingExtension(jump::meanLegLength(*drive_.legs()), lever, effort, drive_.mass(), drive_.gravity().norm(), feet);
 }
 
 void FlightPhase::liftOff(const pronk_robot_state& s) {

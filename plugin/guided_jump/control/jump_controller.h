@@ -74,11 +74,8 @@ class JumpController {
   const jump::ThrustPlan* plan() const { return plan_ ? plan_->thrust.get() : nullptr; }
   const Eigen::Vector3d& startOrigin() const { return plan_->origin; }    // S origin, world
   const Eigen::Matrix3d& startHeading() const { return plan_->heading; }  // S -> world
-  double thrustStartTime() const { return plan_ ? plan_->start_time : 0.0; }
   // The last tick's torques before the motors clamp them (what the controller asked for).
   const Eigen::VectorXd& commandedTorque() const { return drive_.commandedTorque(); }
-  // The descent's landing pose below the stance feet (landing_extension, resolved), m.
-  double landingExtension() const { return flight_.extension(); }
 
  private:
   void enter(JumpPhase phase, double time, const std::string& detail = "");

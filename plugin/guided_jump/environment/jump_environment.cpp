@@ -25,9 +25,7 @@ constexpr double kGo1WorkspaceZ[2] = {0.15, 0.40};
 void deriveFromRobot(EnvironmentSettings* s, const std::optional<std::array<jump::LegGeometry, jump::kLegCount>>& legs) {
   double scale = 1.0;
   if (legs) {
-    double length = 0.0;
-    for (const jump::LegGeometry& leg : *legs) length += (leg.thigh_length + leg.calf_length) / jump::kLegCount;
-    scale = jump::lengthScaleToGo1(length);
+    scale = jump::lengthScaleToGo1(jump::meanLegLength(*legs));
   }
   const jump::ActionRanges derived = jump::scaledActionRanges(scale);
   for (int i = 0; i < kActionSize; ++i) {
@@ -78,11 +76,6 @@ EnvironmentSettings EnvironmentSettings::read(const ParamReader& read) {
 }
 
 namespace {
-
-Eigen::Quaterniond quaternionOf(const pronk_robot_state& s) {
-  return Eigen::Quaterniond(s.base_quaternion[0], s.base_quaternion[1], s.base_quaternion[2], s.base_quaternion[3])
-      .normalized();
-}
 
 Eigen::Matrix3d rotationZYX(double roll, double pitch, double yaw) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
@@ -172,7 +165,7 @@ void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_r
   for (int i = 0; i < kObservationSize; ++i) task_[i] = observation[i] = task[i];
   reset_time_ = state.time;
   start_ = takeOffFrame(host_, state);
-  const Eigen::Matrix3d R = quaternionOf(state).toRotationMatrix();
+  const Eigen::Matrix3d R = rotationOf(state);
   standing_height_ = state.com_position[2] - start_.origin.z();
   com_to_trunk_ = R.transpose() * (vec(state.base_position) - vec(state.com_position));
   for (int f = 0; f < feet_ && f < jump::kLegCount; ++f) start_feet_[f] = start_.point(state.foot_position + 3 * f);
@@ -373,7 +366,7 @@ jump::BodyState JumpEnvironment::bodyState(const pronk_robot_state& s, const Sta
   jump::BodyState b;
   b.time = s.time - reset_time_;
   b.base_position = S.point(s.base_position);
-  b.orientation = Eigen::Quaterniond(S.heading.transpose() * quaternionOf(s).toRotationMatrix());
+  b.orientation = Eigen::Quaterniond(S.heading.transpose() * rotationOf(s));
   b.com_position = S.point(s.com_position);
   b.com_velocity = S.direction(s.com_velocity);
   b.angular_velocity = S.direction(s.base_angular_velocity);

@@ -160,6 +160,12 @@ Eigen::Vector3d footPosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
                       -l1 * std::cos(q[1]) - l2 * std::cos(q[1] + q[2]));
 }
 
+double meanLegLength(const std::array<LegGeometry, kLegCount>& legs) {
+  double length = 0.0;
+  for (const LegGeometry& leg : legs) length += (leg.thigh_length + leg.calf_length) / kLegCount;
+  return length;
+}
+
 Eigen::Vector3d kneePosition(const LegGeometry& leg, const Eigen::Vector3d& q) {
   return fromLegPlane(leg, q[0], -leg.thigh_length * std::sin(q[1]), -leg.thigh_length * std::cos(q[1]));
 }

@@ -76,6 +76,9 @@ Eigen::Vector3d footPosition(const LegGeometry& leg, const Eigen::Vector3d& q);
 // Forward kinematics of the knee joint (the calf joint's origin), trunk frame.
 Eigen::Vector3d kneePosition(const LegGeometry& leg, const Eigen::Vector3d& q);
 
+// The legs' mean length, thigh + calf (m): what the robot's lengths scale by.
+double meanLegLength(const std::array<LegGeometry, kLegCount>& legs);
+
 // d footPosition / d q (columns: hip, thigh, calf), trunk frame, analytic.
 Eigen::Matrix3d footJacobian(const LegGeometry& leg, const Eigen::Vector3d& q);
 
