@@ -1,6 +1,8 @@
 // The plugin ABI's host side: the kinematics a plugin asks for, computed by the
 // World, and plugin controller instances behind the host's Controller interface.
 #include <atomic>
+#include <cmath>
+#include <optional>
 #include <cstring>
 
 #include "pronk/controller.h"
@@ -124,6 +126,15 @@ pronk_status centroidalMomentum(void* host, double angular[3], double inertia[9]
   });
 }
 
+pronk_status terrainTop(void* host, double x, double y, double* height, int32_t* surface) {
+  if (!std::isfinite(x) || !std::isfinite(y)) return PRONK_ERROR_INVALID_ARGUMENT;
+  const std::optional<Surface> top = self(host).world().terrain().topAt(x, y);
+  if (!top) return PRONK_ERROR_UNSUPPORTED;
+  if (height) *height = top->height;
+  if (surface) *surface = top->box;
+  return PRONK_OK;
+}
+
 void emitEvent(void* host, double time, const char* name, const char* detail) {
   if (Trace* t = self(host).trace()) t->addEvent(time, name ? name : "", detail ? detail : "");
 }
@@ -154,6 +165,7 @@ HostApi::HostApi(const World& world, Trace* trace) : world_(world), trace_(trace
   api_.log = log;
   api_.report_metric = reportMetric;
   api_.centroidal_momentum = centroidalMomentum;
+  api_.terrain_top = terrainTop;
 }
 
 AbiStateView::AbiStateView(const RobotState& s) {

@@ -53,6 +53,8 @@
  *        robot is described once, in its platform file. pronk_factory::task_mirror:
  *        an environment whose task is symmetric under the mirror across the robot's
  *        sagittal plane says how each task number changes sign.
+ *   1.6  pronk_host_api::terrain_top: the terrain's top surface under a point, so
+ *        that a plugin can see the boxes it stands on and jumps to.
  * A later minor version only appends fields and functions; a plugin that
  * negotiated 1.n must not read what 1.(n+1) added.
  */
@@ -67,7 +69,7 @@ extern "C" {
 #endif
 
 #define PRONK_ABI_MAJOR 1u
-#define PRONK_ABI_MINOR 5u
+#define PRONK_ABI_MINOR 6u
 #define PRONK_ABI_VERSION(major, minor) ((((uint32_t)(major)) << 16) | ((uint32_t)(minor)&0xFFFFu))
 #define PRONK_ABI_VERSION_MAJOR(v) (((uint32_t)(v)) >> 16)
 #define PRONK_ABI_VERSION_MINOR(v) (((uint32_t)(v)) & 0xFFFFu)
@@ -201,6 +203,14 @@ typedef struct pronk_host_api {
      output may be NULL. I^-1 L is the body's average angular velocity: in flight L
      is constant, whatever the legs do. */
   pronk_status (*centroidal_momentum)(void* host, double angular_momentum_world[3], double inertia_world[9]);
+  /* 1.6: the terrain's highest top face whose footprint holds the world point (x, y),
+     as the terrain is at the current tick: its height (world z, m) and which part of
+     the terrain it is (-1 the ground plane, 0 ... the terrain's boxes, in the order
+     the scenario gives them, generated platforms after its own boxes). A point over
+     no surface at all (no ground plane, no box) gives PRONK_ERROR_UNSUPPORTED and
+     leaves both outputs as they were. Either output may be NULL. Box sides are
+     vertical: the surface is a step function of (x, y). */
+  pronk_status (*terrain_top)(void* host, double x, double y, double* height, int32_t* surface);
 } pronk_host_api;
 
 /* Operations on a controller instance. */
