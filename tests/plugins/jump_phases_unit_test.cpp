@@ -15,9 +15,12 @@
 #include "control/jump_plan.h"
 #include "control/landing_phase.h"
 #include "control/leg_drive.h"
+#include "control/robot_state.h"
+#include "control/terrain_clearance.h"
 #include "control/thrust_phase.h"
 #include "fake_robot.h"
 #include "method/ballistics.h"
+#include "method/leg_ik.h"
 
 namespace pronk::guided_jump {
 namespace {
@@ -258,6 +261,112 @@ TEST_F(JumpPhaseUnit, TheLandingTurnsTheTrunkToThePlannedHeading) {
   const Eigen::Vector3d moment = momentAboutCom(feetForces(d.commandedTorque()));
   EXPECT_NEAR(moment.z(), 12.0 * settings.yaw_gain * -0.1, 1e-6);
   EXPECT_NEAR(moment.head<2>().norm(), 0.0, 1e-6);
+}
+
+// Boxes across the x axis on a ground plane at z = -0.02 (the fake robot's
+// feet are spheres of 0.02 m centred at z = 0), answered as the host's
+// terrain_top answers (the highest top over the point).
+struct TestBox {
+  double x0, x1, top;
+};
+std::vector<TestBox> g_boxes;
+double g_ground = -0.02;
+pronk_status testTerrainTop(void*, double x, double y, double* height, int32_t* surface) {
+  (void)y;
+  double best = g_ground;
+  int32_t which = -1;
+  for (size_t i = 0; i < g_boxes.size(); ++i) {
+    if (x >= g_boxes[i].x0 && x <= g_boxes[i].x1 && g_boxes[i].top > best) {
+      best = g_boxes[i].top;
+      which = static_cast<int32_t>(i);
+    }
+  }
+  if (height) *height = best;
+  if (surface) *surface = which;
+  return PRONK_OK;
+}
+
+class TerrainClearanceUnit : public JumpPhaseUnit {
+ protected:
+  void SetUp() override {
+    JumpPhaseUnit::SetUp();
+    api_.terrain_top = testTerrainTop;
+    g_boxes.clear();
+    g_ground = -0.02;
+    robot_.contact().fill(0);  // in the air
+  }
+  // The Go1's legs at the stance under a level trunk 0.3 m up: the feet just
+  // above the ground, the rear ones at x = -0.19, the front ones at +0.19.
+  static Eigen::VectorXd stance() {
+    Eigen::VectorXd q(12);
+    for (int f = 0; f < 4; ++f) q.segment<3>(3 * f) = Eigen::Vector3d(0, 0.75, -1.5);
+    return q;
+  }
+  // The lowest clearance of foot f's knee, mid-calf and foot sphere over the top h.
+  double lowest(LegDrive& d, int f, double h) const {
+    const jump::LegGeometry& leg = (*d.legs())[f];
+    const Eigen::Vector3d q = d.q_ref().segment<3>(3 * f);
+    const Eigen::Vector3d base(0, 0, 0.3), knee = base + jump::kneePosition(leg, q),
+                          foot = base + jump::footPosition(leg, q);
+    return std::min({knee.z() - h, 0.5 * (knee.z() + foot.z()) - h, foot.z() - 0.02 - h});
+  }
+};
+
+TEST_F(TerrainClearanceUnit, TheHostsTerrainIsReadWhenItOffersIt) {
+  g_boxes = {{-1.0, 0.0, 0.25}};
+  const std::optional<TerrainTop> top = terrainTop(&api_, -0.5, 0.0);
+  ASSERT_TRUE(top);
+  EXPECT_DOUBLE_EQ(top->height, 0.25);
+  EXPECT_EQ(top->surface, 0);
+  api_.struct_size = offsetof(pronk_host_api, terrain_top);  // a host before ABI 1.6
+  EXPECT_FALSE(terrainTop(&api_, -0.5, 0.0));
+}
+
+TEST_F(TerrainClearanceUnit, OverFlatGroundNothingChanges) {
+  LegDrive d = drive(jump::go1Legs());
+  const JumpPlan p = plan(d);
+  d.q_ref() = stance();
+  robot_.com = Eigen::Vector3d(0, 0, 0.3);
+  TerrainClearance clearance(d);
+  EXPECT_EQ(clearance.apply(robot_.state(), p), 0.0);
+  EXPECT_EQ(d.q_ref(), stance());
+}
+
+TEST_F(TerrainClearanceUnit, TheRearLegsStayAboveTheBoxBeingLeft) {
+  LegDrive d = drive(jump::go1Legs());
+  const JumpPlan p = plan(d, -0.3);  // a down jump, 0.3 m
+  // The robot has just left the box's edge at x = 0: its rear feet are still
+  // over the box's top, its front feet over the ground 0.3 m below.
+  g_ground = -0.32;
+  g_boxes = {{-1.0, 0.0, -0.02}};
+  d.q_ref() = stance();
+  TerrainClearance clearance(d);
+  const double raised = clearance.apply(robot_.state(), p);
+  EXPECT_GT(raised, TerrainClearance::kClearance - 1e-3);
+  for (const int rear : {2, 3}) EXPECT_GE(lowest(d, rear, -0.02), TerrainClearance::kClearance - 1e-3) << rear;
+  EXPECT_EQ(d.q_ref().head<6>(), stance().head<6>());
+}
+
+TEST_F(TerrainClearanceUnit, TheFrontLegsRiseBeforeTheEdgeAhead) {
+  LegDrive d = drive(jump::go1Legs());
+  const JumpPlan p = plan(d, 0.1);  // an up jump onto the box ahead
+  g_boxes = {{0.3, 1.5, 0.1}};
+  d.q_ref() = stance();
+  TerrainClearance clearance(d);
+  // Standing still, the box's edge is 0.11 m ahead of the front feet: nothing to do.
+  EXPECT_EQ(clearance.apply(robot_.state(), p), 0.0);
+  // Moving at 2 m/s, the front feet reach it within the look-ahead: they rise.
+  pronk_robot_state s = robot_.state();
+  s.com_velocity[0] = 2.0;
+  EXPECT_GT(clearance.apply(s, p), 0.1);
+  for (const int front : {0, 1}) EXPECT_GE(lowest(d, front, 0.1), TerrainClearance::kClearance - 1e-3) << front;
+  EXPECT_EQ(d.q_ref().tail<6>(), stance().tail<6>());
+  // A foot on the ground is not moved.
+  d.q_ref() = stance();
+  robot_.contact().fill(1);
+  pronk_robot_state down = robot_.state();
+  down.com_velocity[0] = 2.0;
+  EXPECT_EQ(clearance.apply(down, p), 0.0);
 }
 
 }  // namespace

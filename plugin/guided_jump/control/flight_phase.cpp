@@ -35,7 +35,7 @@ FlightSettings FlightSettings::read(const ParamReader& read) {
 }
 
 FlightPhase::FlightPhase(LegDrive& drive, const FlightSettings& settings, const LandingPhase& landing)
-    : drive_(drive), settings_(settings), landing_(landing), blend_from_(Eigen::VectorXd::Zero(drive.jointCount())) {
+    : drive_(drive), settings_(settings), landing_(landing), clearance_(drive), blend_from_(Eigen::VectorXd::Zero(drive.jointCount())) {
   if (settings_.extension < 0.0) settings_.extension = derivedExtension();
 }
 
@@ -107,6 +107,7 @@ void FlightPhase::compute(const pronk_robot_state& s, const JumpPlan& plan, bool
     }
   }
   drive_.q_ref() = blend_from_ + a * (goal - blend_from_);
+  clearance_.apply(s, plan);
   drive_.qd_ref().setZero();
   drive_.jointTorques(s, kp(), false, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), torque);
 }

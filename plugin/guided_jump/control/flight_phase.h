@@ -5,7 +5,8 @@
 // ends kExtensionLead before touchdown. The landing pose is the stance's feet
 // placed where the landing will stop the CoM, turned against the trunk's tilt
 // (so that a trunk that rotated in the air still lands on all four feet) and
-// reaching landing_extension below the stance.
+// reaching landing_extension below the stance. In both, the legs stay clear of
+// the terrain they fly over (TerrainClearance).
 #pragma once
 
 #include <array>
@@ -17,6 +18,7 @@
 #include "control/landing_phase.h"
 #include "control/leg_drive.h"
 #include "control/param_reader.h"
+#include "control/terrain_clearance.h"
 #include "pronk/plugin_abi.h"
 
 namespace pronk::guided_jump {
@@ -66,6 +68,7 @@ class FlightPhase {
   LegDrive& drive_;
   FlightSettings settings_;
   const LandingPhase& landing_;
+  TerrainClearance clearance_;
   Eigen::VectorXd blend_from_;
 };
 

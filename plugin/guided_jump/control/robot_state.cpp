@@ -62,4 +62,17 @@ std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host) {
   return m ? averageRate(*m) : std::nullopt;
 }
 
+std::optional<TerrainTop> terrainTop(const pronk_host_api* host, double x, double y) {
+  if (host->struct_size < offsetof(pronk_host_api, terrain_top) + sizeof(host->terrain_top) || !host->terrain_top) {
+    return std::nullopt;
+  }
+  TerrainTop top;
+  int32_t surface = -1;
+  if (host->terrain_top(host->host, x, y, &top.height, &surface) != PRONK_OK || !std::isfinite(top.height)) {
+    return std::nullopt;
+  }
+  top.surface = surface;
+  return top;
+}
+
 }  // namespace pronk::guided_jump

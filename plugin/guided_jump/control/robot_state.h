@@ -60,4 +60,13 @@ std::optional<Eigen::Vector3d> averageRate(const CentroidalMomentum& momentum);
 // is what the attitude does on average, whatever the legs do.
 std::optional<Eigen::Vector3d> wholeBodyRate(const pronk_host_api* host);
 
+// The terrain's top face over a world point (x, y), from the host (ABI 1.6):
+// its height (world z, m) and which part of the terrain it is (-1 the ground);
+// nullopt from an older host or over no surface.
+struct TerrainTop {
+  double height = 0.0;
+  int surface = -1;
+};
+std::optional<TerrainTop> terrainTop(const pronk_host_api* host, double x, double y);
+
 }  // namespace pronk::guided_jump

@@ -1,0 +1,86 @@
+#include "control/terrain_clearance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "control/robot_state.h"
+#include "method/leg_ik.h"
+
+namespace pronk::guided_jump {
+
+namespace {
+// A surface this much above the landing one (or the one under the point) is an
+// obstacle: the feet's contact sinks them a few mm, and the start frame's ground
+// is where they stood.
+constexpr double kSameSurface = 0.02;  // m
+}  // namespace
+
+double TerrainClearance::shortfall(const pronk_robot_state& s, int f, const Eigen::Vector3d& q,
+                                   double landing_surface) const {
+  const Eigen::Matrix3d R = rotationOf(s);
+  const Eigen::Vector3d base = vec(s.base_position);
+  const pronk_host_api* host = drive_.host();
+  const double radius = host->foot_radius ? host->foot_radius(host->host, f) : 0.0;
+  // The leg's points in the trunk frame and how far above the terrain each must be.
+  std::array<Eigen::Vector3d, 3> points;
+  std::array<double, 3> below{};  // the point's own reach below it (the foot sphere's radius)
+  int count = 0;
+  if (drive_.legs() && f < jump::kLegCount) {
+    const jump::LegGeometry& leg = (*drive_.legs())[f];
+    const Eigen::Vector3d knee = jump::kneePosition(leg, q), foot = jump::footPosition(leg, q);
+    points = {knee, 0.5 * (knee + foot), foot};
+    below = {0.0, 0.0, std::isfinite(radius) ? radius : 0.0};
+    count = 3;
+  } else {
+    points[0] = footInTrunk(f, q);
+    below[0] = std::isfinite(radius) ? radius : 0.0;
+    count = 1;
+  }
+  const Eigen::Vector2d travel(s.com_velocity[0], s.com_velocity[1]);
+  double worst = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d w = base + R * points[i];
+    std::optional<double> under;  // the top under the point now
+    for (int k = 0; k < kLookaheadSteps; ++k) {
+      const Eigen::Vector2d at = w.head<2>() + travel * (kLookahead * k / (kLookaheadSteps - 1));
+      const std::optional<TerrainTop> top = terrainTop(host, at.x(), at.y());
+      if (!top) return 0.0;  // an older host, or nothing below: nothing to clear
+      if (!under) under = top->height;
+      // An obstacle: a surface above the landing one, or a step up ahead.
+      const bool obstacle = top->height > landing_surface + kSameSurface || top->height > *under + kSameSurface;
+      if (obstacle) worst = std::max(worst, top->height + kClearance + below[i] - w.z());
+    }
+  }
+  return worst;
+}
+
+Eigen::Vector3d TerrainClearance::footInTrunk(int f, const Eigen::Vector3d& q) const {
+  if (drive_.legs() && f < jump::kLegCount) return jump::footPosition((*drive_.legs())[f], q);
+  Eigen::VectorXd all = drive_.q_ref();
+  all.segment<3>(3 * f) = q;
+  return drive_.feetAt(all).col(f);
+}
+
+double TerrainClearance::apply(const pronk_robot_state& s, const JumpPlan& plan) {
+  const double landing_surface = plan.origin.z() + plan.landing_height;
+  const Eigen::Matrix3d R = rotationOf(s);
+  double raised = 0.0;
+  for (int f = 0; f < drive_.footCount(); ++f) {
+    if (s.foot_in_contact[f]) continue;
+    Eigen::Vector3d q = drive_.q_ref().segment<3>(3 * f);
+    double lift = 0.0;
+    for (int pass = 0; pass < kPasses; ++pass) {
+      const double dip = shortfall(s, f, q, landing_surface);
+      if (!(dip > 1e-4)) break;
+      q = drive_.legIk(f, footInTrunk(f, q) + R.transpose() * Eigen::Vector3d(0, 0, dip));
+      lift += dip;
+    }
+    drive_.q_ref().segment<3>(3 * f) = q;
+    raised = std::max(raised, lift);
+  }
+  return raised;
+}
+
+}  // namespace pronk::guided_jump

@@ -1,0 +1,42 @@
+// The legs in the air kept clear of the terrain they fly over. Each tick, for
+// every foot out of contact, the knee, the middle of the calf and the foot
+// sphere (at the joints' PD reference, with the trunk where it is) stay
+// kClearance above every obstacle under them or under where the trunk's
+// horizontal velocity carries them within kLookahead: a surface higher than the
+// one the jump lands on (the box being left) or higher than the one under the
+// point now (the edge of a box ahead). A leg that would dip into one is
+// shortened: its foot raised, in the world's vertical, by the deepest
+// shortfall, and solved again by IK. Over flat ground there is no obstacle,
+// and without the host's terrain (ABI < 1.6) it does nothing.
+#pragma once
+
+#include "control/jump_plan.h"
+#include "control/leg_drive.h"
+#include "pronk/plugin_abi.h"
+
+namespace pronk::guided_jump {
+
+class TerrainClearance {
+ public:
+  static constexpr double kClearance = 0.03;  // m above an obstacle
+  static constexpr double kLookahead = 0.1;   // s of the trunk's horizontal travel looked ahead
+  static constexpr int kLookaheadSteps = 4;   // samples over it, the present included
+  static constexpr int kPasses = 3;           // raise-and-solve rounds per leg
+
+  explicit TerrainClearance(LegDrive& drive) : drive_(drive) {}
+
+  // Raises the reference of every leg out of contact that dips into the terrain
+  // (drive.q_ref()). Returns how far the deepest foot was raised, m (0: none).
+  double apply(const pronk_robot_state& s, const JumpPlan& plan);
+
+ private:
+  // The deepest shortfall of foot f's leg at joints q (m, <= 0 when clear).
+  double shortfall(const pronk_robot_state& s, int f, const Eigen::Vector3d& q, double landing_surface) const;
+
+  // Foot f at its leg's joints q, trunk frame (the analytic leg model when there is one).
+  Eigen::Vector3d footInTrunk(int f, const Eigen::Vector3d& q) const;
+
+  LegDrive& drive_;
+};
+
+}  // namespace pronk::guided_jump
