@@ -197,7 +197,7 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("jump"), std::string::npos);
-  EXPECT_NE(o.output.find("ABI 1.5"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("ABI 1.6"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
             std::string::npos)
       << o.output;
@@ -382,7 +382,7 @@ TEST(Cli, AScenarioNeverWritesAVideoByItselfNorOutsideOut) {
 TEST(Cli, VersionMissingScenarioAndPluginAfterTheSubcommand) {
   const Outcome version = pronk("--version");
   EXPECT_EQ(version.status, 0) << version.output;
-  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.5, commit "), std::string::npos)
+  EXPECT_NE(version.output.find("pronk " PRONK_PROJECT_VERSION ", plugin ABI 1.6, commit "), std::string::npos)
       << version.output;
   // The commit is the source tree's as it was built, not as it was configured.
   if (FILE* git = popen(("git -C " + source("") + " rev-parse --short=12 HEAD 2>/dev/null").c_str(), "r")) {

@@ -23,34 +23,43 @@ double TerrainClearance::shortfall(const pronk_robot_state& s, int f, const Eige
   const Eigen::Vector3d base = vec(s.base_position);
   const pronk_host_api* host = drive_.host();
   const double radius = host->foot_radius ? host->foot_radius(host->host, f) : 0.0;
-  // The leg's points in the trunk frame and how far above the terrain each must be.
-  std::array<Eigen::Vector3d, 3> points;
-  std::array<double, 3> below{};  // the point's own reach below it (the foot sphere's radius)
+  // The leg's points in the trunk frame and how far above the terrain each must
+  // be: along the thigh and the calf, densely enough that an edge between two
+  // of them cannot pass more than a few mm above the segment between.
+  constexpr int kThighPoints = 3, kCalfPoints = 6;
+  std::array<Eigen::Vector3d, kThighPoints + kCalfPoints> points;
+  std::array<double, kThighPoints + kCalfPoints> below{};  // the point's own reach below it (the foot sphere's radius)
   int count = 0;
+  const double foot_radius = std::isfinite(radius) ? radius : 0.0;
   if (drive_.legs() && f < jump::kLegCount) {
     const jump::LegGeometry& leg = (*drive_.legs())[f];
+    const Eigen::Vector3d hip = leg.hipPosition();  // the thigh starts near it
     const Eigen::Vector3d knee = jump::kneePosition(leg, q), foot = jump::footPosition(leg, q);
-    points = {knee, 0.5 * (knee + foot), foot};
-    below = {0.0, 0.0, std::isfinite(radius) ? radius : 0.0};
-    count = 3;
+    for (int i = 1; i <= kThighPoints; ++i) points[count++] = hip + (knee - hip) * (static_cast<double>(i) / kThighPoints);
+    for (int i = 1; i <= kCalfPoints; ++i) points[count++] = knee + (foot - knee) * (static_cast<double>(i) / kCalfPoints);
+    below[count - 1] = foot_radius;
   } else {
     points[0] = footInTrunk(f, q);
-    below[0] = std::isfinite(radius) ? radius : 0.0;
+    below[0] = foot_radius;
     count = 1;
   }
   const Eigen::Vector2d travel(s.com_velocity[0], s.com_velocity[1]);
+  const double g = drive_.gravity().z();  // m/s^2, negative
   double worst = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < count; ++i) {
     const Eigen::Vector3d w = base + R * points[i];
     std::optional<double> under;  // the top under the point now
     for (int k = 0; k < kLookaheadSteps; ++k) {
-      const Eigen::Vector2d at = w.head<2>() + travel * (kLookahead * k / (kLookaheadSteps - 1));
+      // Where the trunk's ballistic flight carries the point within the look-ahead.
+      const double tau = kLookahead * k / (kLookaheadSteps - 1);
+      const Eigen::Vector2d at = w.head<2>() + travel * tau;
+      const double z = w.z() + (s.com_velocity[2] + 0.5 * g * tau) * tau;
       const std::optional<TerrainTop> top = terrainTop(host, at.x(), at.y());
       if (!top) return 0.0;  // an older host, or nothing below: nothing to clear
       if (!under) under = top->height;
       // An obstacle: a surface above the landing one, or a step up ahead.
       const bool obstacle = top->height > landing_surface + kSameSurface || top->height > *under + kSameSurface;
-      if (obstacle) worst = std::max(worst, top->height + kClearance + below[i] - w.z());
+      if (obstacle) worst = std::max(worst, top->height + kClearance + below[i] - z);
     }
   }
   return worst;

@@ -1,8 +1,8 @@
 // The legs in the air kept clear of the terrain they fly over. Each tick, for
-// every foot out of contact, the knee, the middle of the calf and the foot
+// every foot out of contact, points along its thigh and calf and the foot
 // sphere (at the joints' PD reference, with the trunk where it is) stay
-// kClearance above every obstacle under them or under where the trunk's
-// horizontal velocity carries them within kLookahead: a surface higher than the
+// kClearance above every obstacle under them, now and where the trunk's
+// ballistic flight carries them within kLookahead: a surface higher than the
 // one the jump lands on (the box being left) or higher than the one under the
 // point now (the edge of a box ahead). A leg that would dip into one is
 // shortened: its foot raised, in the world's vertical, by the deepest
