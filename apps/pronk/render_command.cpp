@@ -137,7 +137,7 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
     if (jump && jump->target) {
       // The jump's own terrain (a step platform for a target with a height) and
       // the markers its run's video drew.
-      const Scenario s = applyCase(scenario, EpisodeCase{"", *jump->target, {}});
+      const Scenario s = applyCase(scenario, EpisodeCase{"", *jump->target, {}}, world.footprint());
       terrain.emplace(s.ground, s.ground_height, s.terrain);
       apex = apexTerrainChange(s, *terrain, trace);
       std::optional<EnvironmentSchema> schema;

@@ -158,7 +158,7 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     }
     files.add(r, outcome, trace_file);
     if (!video.path.empty() && !trace.samples.empty()) {
-      const Scenario s = applyCase(scenario, r.episode);  // it ran, so it applies
+      const Scenario s = applyCase(scenario, r.episode, pool.footprint());  // it ran, so it applies
       const Terrain terrain(s.ground, s.ground_height, s.terrain);
       const render::SceneMarkers markers = jumpMarkers(trace, r.episode.target, outcome.landing.error_xy,
                                                       outcome.landing.error_yaw, terrain, gravity, &schema);

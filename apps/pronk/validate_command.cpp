@@ -85,13 +85,26 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
       std::string environment;
       if (scenario.environment) environment = ", environment " + checkEnvironment(scenario, registry, &world);
       // Every case a run would set up (a step platform needs room for its edge):
-      // what a run would refuse, validate refuses, at the target's or sweep's line.
-      std::vector<EpisodeCase> cases = targetCases(scenario);
+      // a target or a grid case a run would refuse, validate refuses, at its line;
+      // a random sweep's draws that would fail alone are counted in a warning.
+      const Footprint footprint = world.footprint();
+      for (const EpisodeCase& c : targetCases(scenario)) applyCase(scenario, c, footprint);
       for (const SweepSpec& sweep : scenario.sweeps) {
-        const std::vector<EpisodeCase> more = sweepCases(scenario, sweep.name);
-        cases.insert(cases.end(), more.begin(), more.end());
+        size_t refused = 0;
+        std::string first;
+        for (const EpisodeCase& c : sweepCases(scenario, sweep.name)) {
+          try {
+            applyCase(scenario, c, footprint);
+          } catch (const InputError& e) {
+            if (sweep.kind != SweepSpec::Kind::Random) throw;
+            if (refused++ == 0) first = e.what();
+          }
+        }
+        if (refused > 0) {
+          std::cerr << "warning: " << file << ": sweep '" << sweep.name << "': " << refused
+                    << " of its cases cannot be set up and will fail alone; the first: " << first << "\n";
+        }
       }
-      for (const EpisodeCase& c : cases) applyCase(scenario, c);
       std::printf("ok  %s (%s, %d joints, %d feet, %zu targets%s)\n", file.c_str(), world.robot().name.c_str(),
                   world.jointCount(), world.footCount(), scenario.targets.size(), environment.c_str());
     } catch (const Error& e) {

@@ -25,6 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr double kMaxCases = 1000;
+// A Go1-sized footprint for the step platforms (no robot is loaded here).
+const pronk::Footprint kFootprint{{{0.2, -0.12, -0.3}, {0.2, 0.12, -0.3}, {-0.2, -0.12, -0.3}, {-0.2, 0.12, -0.3}}};
 
 fs::path g_sandbox;
 std::string g_input;
@@ -97,10 +99,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       pronk::loadScenarioPart(g_input);
     } else {
       const pronk::Scenario scenario = pronk::loadScenario(g_input);
-      for (const pronk::EpisodeCase& c : pronk::targetCases(scenario)) pronk::applyCase(scenario, c);
+      for (const pronk::EpisodeCase& c : pronk::targetCases(scenario)) pronk::applyCase(scenario, c, kFootprint);
       for (const pronk::SweepSpec& sweep : scenario.sweeps) {
         if (caseCount(scenario, sweep) > kMaxCases) continue;
-        for (const pronk::EpisodeCase& c : pronk::sweepCases(scenario, sweep.name)) pronk::applyCase(scenario, c);
+        for (const pronk::EpisodeCase& c : pronk::sweepCases(scenario, sweep.name)) pronk::applyCase(scenario, c, kFootprint);
       }
     }
   } catch (const pronk::Error&) {

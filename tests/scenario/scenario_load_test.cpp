@@ -494,7 +494,9 @@ TEST(Sweeps, EveryListedVariableIsAccepted) {
   for (const pronk::SweepVariable& v : pronk::kSweepVariables) {
     TempTree tree;
     const fs::path file = tree.write(
-        "vary.xml", scenarioWith(tinyPlatform() + "<sweeps><vary name=\"v\" var=\"" + std::string(v.name) +
+        "vary.xml", scenarioWith(tinyPlatform() +
+                                 (std::string(v.name) == "terrain.edge" ? "<terrain step_platforms=\"true\"/>\n" : "") +
+                                 "<sweeps><vary name=\"v\" var=\"" + std::string(v.name) +
                                  "\" values=\"0.9 1.0\"/></sweeps>\n"));
     const Scenario s = loadScenario(file.string());
     ASSERT_EQ(s.sweeps.size(), 1u) << v.name;
@@ -516,40 +518,56 @@ TEST(Sweeps, GridSpanIncludesTheEndPointDespiteRounding) {
   EXPECT_EQ(s.sweeps[0].axes[1].values, (std::vector<double>{50, 60, 70}));  // 75 is not on the grid
 }
 
-TEST(StepPlatforms, UpAndDownTargetsGetTheirPlatformWithTheEdgeHalfway) {
+// A Go1-sized footprint: feet 0.2 m ahead and behind, 0.12 m to the sides.
+const pronk::Footprint kFootprint{{{0.2, -0.12, -0.3}, {0.2, 0.12, -0.3}, {-0.2, -0.12, -0.3}, {-0.2, 0.12, -0.3}}};
+
+TEST(StepPlatforms, UpAndDownTargetsGetTheirPlatformWithTheEdgeBetweenTheStances) {
   TempTree tree;
   const fs::path file = tree.write(
       "steps.xml", scenarioWith(tinyPlatform() + "<terrain step_platforms=\"true\"/>\n<targets>"
-                                                 "<target name=\"up\" x=\"0.3\" y=\"0.4\" z=\"0.2\"/>"
+                                                 "<target name=\"up\" x=\"0.6\" y=\"0.8\" z=\"0.2\"/>"
                                                  "<target name=\"down\" x=\"-0.6\" z=\"-0.1\"/>"
                                                  "<target name=\"flat\" x=\"0.4\"/></targets>\n"));
   const Scenario s = loadScenario(file.string());
   ASSERT_EQ(s.step_platforms, pronk::StepPlatforms::edge);
   const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
   ASSERT_EQ(cases.size(), 3u);
-  // Up, 0.5 m away along (0.6, 0.8): the box is 0.2 high, turned to the jump
-  // direction, from the edge at 0.25 m to 0.6 m beyond the target.
-  const Scenario up = pronk::applyCase(s, cases[0]);
+  // Up, 1 m away along u = (0.6, 0.8): the start's foremost foot reaches
+  // (0.2, 0.12) u = 0.216 m along u, the landing's rearmost foot 1 - 0.216 m. The
+  // edge goes halfway between the two 0.05 m clearances, at 0.5 m, and the box,
+  // 0.2 high and turned to u, runs from it to 0.6 m beyond the target.
+  const Scenario up = pronk::applyCase(s, cases[0], kFootprint);
   ASSERT_EQ(up.terrain.size(), s.terrain.size() + 1);
   const pronk::TerrainBox& landing = up.terrain.back();
   EXPECT_NEAR(landing.size[2], 0.2, 1e-12);
   EXPECT_NEAR(landing.position[2], s.ground_height + 0.1, 1e-12);
   EXPECT_NEAR(landing.yaw, std::atan2(0.8, 0.6), 1e-12);
-  EXPECT_NEAR(landing.size[0], 0.5 + 0.6 - 0.25, 1e-12);
-  const double middle = (0.25 + 1.1) / 2.0;
+  EXPECT_NEAR(landing.size[0], 1.6 - 0.5, 1e-12);
+  const double middle = (0.5 + 1.6) / 2.0;
   EXPECT_NEAR(landing.position[0], s.platform.base_position[0] + 0.6 * middle, 1e-12);
   EXPECT_NEAR(landing.position[1], s.platform.base_position[1] + 0.8 * middle, 1e-12);
-  // Down, 0.6 m backwards: a start platform from 0.8 m against the jump direction
-  // to the edge 0.3 m along it.
-  const Scenario down = pronk::applyCase(s, cases[1]);
+  // Down, 0.6 m backwards: the room between the stances is [0.25, 0.35] m along
+  // u = -x; a start platform from 0.8 m against u to the edge at 0.3 m.
+  const Scenario down = pronk::applyCase(s, cases[1], kFootprint);
   const pronk::TerrainBox& start = down.terrain.back();
   EXPECT_EQ(start.name, "start_platform");
   EXPECT_NEAR(start.size[2], 0.1, 1e-12);
   EXPECT_NEAR(start.size[0], 0.8 + 0.3, 1e-12);
-  // Along the jump direction u = -x it spans [-0.8, 0.3] m: its centre is -0.25 u = +0.25 m in x.
+  // Along u it spans [-0.8, 0.3] m: its centre is -0.25 u = +0.25 m in x.
   EXPECT_NEAR(start.position[0], s.platform.base_position[0] + 0.25, 1e-12);
+  // terrain.edge places it in the room: 0 next to the start's feet, 1 next to the landing's.
+  pronk::EpisodeCase near_start = cases[1], near_landing = cases[1];
+  near_start.assignments = {{"terrain.edge", 0.0}};
+  near_landing.assignments = {{"terrain.edge", 1.0}};
+  EXPECT_NEAR(pronk::applyCase(s, near_start, kFootprint).terrain.back().size[0], 0.8 + 0.25, 1e-12);
+  EXPECT_NEAR(pronk::applyCase(s, near_landing, kFootprint).terrain.back().size[0], 0.8 + 0.35, 1e-12);
+  // The landing stance turns with the target's yaw: a quarter turn puts the
+  // landing's feet 0.12 m (not 0.2 m) behind the target along u.
+  pronk::EpisodeCase turned = cases[1];
+  turned.target.yaw = M_PI / 2;
+  EXPECT_NEAR(pronk::applyCase(s, turned, kFootprint).terrain.back().size[0], 0.8 + (0.25 + 0.43) / 2, 1e-12);
   // A flat target adds nothing.
-  EXPECT_EQ(pronk::applyCase(s, cases[2]).terrain.size(), s.terrain.size());
+  EXPECT_EQ(pronk::applyCase(s, cases[2], kFootprint).terrain.size(), s.terrain.size());
 }
 
 TEST(StepPlatforms, ApexPlatformsAddNoBoxAndSitOnTheTargetInTheStartsHeading) {
@@ -564,7 +582,7 @@ TEST(StepPlatforms, ApexPlatformsAddNoBoxAndSitOnTheTargetInTheStartsHeading) {
   s.platform.base_position = {1.0, 2.0, 0.0};
   s.platform.base_yaw = M_PI / 2;
   const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
-  const Scenario up = pronk::applyCase(s, cases[0]);
+  const Scenario up = pronk::applyCase(s, cases[0], kFootprint);
   EXPECT_EQ(up.terrain.size(), s.terrain.size());
   ASSERT_TRUE(up.apex_platform.has_value());
   // Turned a quarter: the target's x runs along the world's y, its y against x.
@@ -574,8 +592,24 @@ TEST(StepPlatforms, ApexPlatformsAddNoBoxAndSitOnTheTargetInTheStartsHeading) {
   EXPECT_NEAR(up.apex_platform->top, 0.3, 1e-12);
   EXPECT_NEAR(up.apex_platform->floor, 0.1 - 0.5, 1e-12);
   // Straight above the start is fine: there is no edge to place.
-  EXPECT_TRUE(pronk::applyCase(s, cases[1]).apex_platform.has_value());
-  EXPECT_FALSE(pronk::applyCase(s, cases[2]).apex_platform.has_value());
+  EXPECT_TRUE(pronk::applyCase(s, cases[1], kFootprint).apex_platform.has_value());
+  EXPECT_FALSE(pronk::applyCase(s, cases[2], kFootprint).apex_platform.has_value());
+}
+
+TEST(StepPlatforms, AnEdgePlacementNeedsStepPlatformsAndAFraction) {
+  TempTree tree;
+  const std::string sweep = "<sweeps><random name=\"r\" count=\"3\" seed=\"1\"><uniform var=\"target.x\" min=\"0.6\" "
+                            "max=\"1\"/><uniform var=\"terrain.edge\" min=\"0\" max=\"HI\"/></random></sweeps>\n";
+  auto with = [&](const std::string& terrain, const std::string& hi) {
+    std::string body = sweep;
+    body.replace(body.find("HI"), 2, hi);
+    return tree.write("edge.xml", scenarioWith(tinyPlatform() + terrain + body));
+  };
+  EXPECT_NO_THROW(loadScenario(with("<terrain step_platforms=\"true\"/>\n", "1").string()));
+  std::string message = loadError(with("<terrain step_platforms=\"apex\"/>\n", "1"));
+  EXPECT_NE(message.find("terrain.edge places a step platform's edge"), std::string::npos) << message;
+  message = loadError(with("<terrain step_platforms=\"true\"/>\n", "1.5"));
+  EXPECT_NE(message.find("must be in [0, 1]"), std::string::npos) << message;
 }
 
 TEST(StepPlatforms, AnUnknownKindIsRefusedWithItsLine) {
@@ -594,7 +628,7 @@ TEST(StepPlatforms, ATargetStraightAboveTheStartHasNoRoomForAnEdge) {
   const Scenario s = loadScenario(file.string());
   const std::vector<pronk::EpisodeCase> cases = pronk::targetCases(s);
   try {
-    pronk::applyCase(s, cases[0]);
+    pronk::applyCase(s, cases[0], kFootprint);
     FAIL() << "expected an InputError";
   } catch (const pronk::InputError& e) {
     const std::string message = e.what();

@@ -102,6 +102,8 @@ class RolloutPool {
   void stop() { stop_ = true; }
 
   const RobotDescription& robot() const { return *robot_; }
+  // Where the robot stands (World::footprint()): the cases' step platforms keep clear of it.
+  const Footprint& footprint() const { return footprint_; }
   const RolloutSetup& setup() const { return setup_; }
   int threads() const { return options_.threads; }
   // Worlds built so far (for the bench: reuse means one per worker).
@@ -114,6 +116,7 @@ class RolloutPool {
   RolloutSetup setup_;
   RolloutOptions options_;
   std::shared_ptr<const RobotDescription> robot_;
+  Footprint footprint_;
   std::vector<std::unique_ptr<Worker>> workers_;
   std::unique_ptr<World> planning_world_;  // priorActions'
   std::atomic<bool> stop_{false};

@@ -318,7 +318,7 @@ struct SweepVariable {
   std::string_view name;
   std::string_view unit;
 };
-inline constexpr std::array<SweepVariable, 12> kSweepVariables{{
+inline constexpr std::array<SweepVariable, 13> kSweepVariables{{
     {"target.x", "m"},
     {"target.y", "m"},
     {"target.z", "m"},
@@ -331,6 +331,7 @@ inline constexpr std::array<SweepVariable, 12> kSweepVariables{{
     {"joints.kp", "N m/rad"},
     {"joints.kd", "N m s/rad"},
     {"contact.mu_static", ""},
+    {"terrain.edge", ""},
 }};
 
 // One episode of a sweep (or of the target list): its target and the values it
@@ -348,15 +349,28 @@ std::vector<EpisodeCase> targetCases(const Scenario& scenario);
 // sweep that sets no target variable runs every target of the scenario per case.
 // Throws InputError naming the known sweeps for an unknown name.
 std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string& name);
+// Where the robot stands: the points of its legs that come nearest the ground
+// (its feet and knees), in its trunk frame at the platform's stance
+// (World::footprint()). The step platforms' edges keep clear of them.
+struct Footprint {
+  std::vector<Vec3> feet;  // m, trunk frame
+};
+
 // The scenario with a case's non-target assignments applied and, with
-// step_platforms="true", the case's platform added: a box |z| high, turned to the jump
-// direction, whose edge lies halfway between the start and the target (so the
-// feet of both stances are equally far from it), 1.2 m wide. An up target's
-// platform runs from the edge to 0.6 m beyond the target; a down target's start
-// platform from 0.8 m behind the start to the edge, and the robot starts on it.
-// A target straight above or below the start has no edge to put: InputError.
-// With step_platforms="apex", apex_platform set instead (no box is added).
-Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode);
+// step_platforms="true", the case's platform added: a box |z| high, turned to the
+// jump direction, 1.2 m wide, whose edge lies between the two stances: at least
+// kStepEdgeClearance beyond every point of the start's footprint and short of
+// every point of the landing's (turned to the target's heading), along the jump
+// direction. The
+// case's terrain.edge (0 ... 1, default 0.5) places it in that room: 0 next to
+// the start feet, 1 next to the landing feet. An up target's platform runs from
+// the edge to 0.6 m beyond the target; a down target's start platform from 0.8 m
+// behind the start to the edge, and the robot starts on it. Two stances with no
+// room between them (a target too near the start) is an InputError naming the
+// target and the overlap. With step_platforms="apex", apex_platform set instead
+// (no box is added).
+constexpr double kStepEdgeClearance = 0.05;  // m along the jump, from a foot's centre to the edge
+Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode, const Footprint& footprint);
 
 // The only major version of the format this build reads.
 constexpr int kScenarioFormatVersion = 1;

@@ -109,6 +109,10 @@ class World {
   const SimSpec& sim() const;
   // The initial joint configuration from the scenario (controller order).
   Eigen::VectorXd initialJointPositions() const;
+  // The feet and the knees (the origins of the bodies that carry the feet) in
+  // the trunk frame at the initial joints: where the robot stands (the step
+  // platforms' edges keep clear of it, applyCase).
+  Footprint footprint() const;
 
   // --- kinematics at the current state ---
   // 3 x (6 + joints): d(foot velocity, world)/d(u), u = [base angular velocity

@@ -29,6 +29,8 @@ RolloutPool::RolloutPool(RolloutSetup setup, RolloutOptions options)
   UrdfOptions urdf;
   urdf.package_paths = setup_.scenario.platform.package_paths;
   robot_ = std::make_shared<const RobotDescription>(loadUrdf(setup_.scenario.platform.urdf, urdf));
+  const Scenario& sc = setup_.scenario;
+  footprint_ = World(*robot_, sc.platform, sc.sim, Terrain(sc.ground, sc.ground_height, sc.terrain)).footprint();
   for (int i = 0; i < options_.threads; ++i) workers_.push_back(std::make_unique<Worker>());
 }
 
@@ -40,7 +42,7 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
   record.episode = episode;
   Scenario s;
   try {
-    s = applyCase(setup_.scenario, episode);
+    s = applyCase(setup_.scenario, episode, footprint_);
   } catch (const InputError& e) {
     record.setup_error = e.what();
     record.result.task = {episode.target.x, episode.target.y, episode.target.z,

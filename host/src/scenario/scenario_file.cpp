@@ -328,6 +328,10 @@ void Loader::checkAcrossElements(Scenario& scenario) const {
   for (const SweepSpec& sweep : scenario.sweeps) {
     const std::string tag = std::string("<") + scenario_file::axisElementName(sweep.kind) + ">: ";
     for (const SweepAxis& axis : sweep.axes) {
+      if (axis.variable == "terrain.edge" && scenario.step_platforms != StepPlatforms::edge) {
+        throw InputError(axis.where, tag + "terrain.edge places a step platform's edge: it needs <terrain "
+                                           "step_platforms=\"true\">");
+      }
       std::vector<double> values = axis.values;
       if (sweep.kind == SweepSpec::Kind::Random) values = {axis.min, axis.max};
       for (double v : values) {

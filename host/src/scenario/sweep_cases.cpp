@@ -124,27 +124,41 @@ namespace {
 constexpr double kPlatformWidth = 1.2;     // m across the jump direction
 constexpr double kPlatformBeyond = 0.6;    // m past an up target
 constexpr double kPlatformBehind = 0.8;    // m behind a down target's start
-constexpr double kLeastEdgeDistance = 0.05;  // m: a target closer than twice this has no edge
 constexpr double kApexFloorDrop = 0.5;       // m: the paper's ground under its take-off platform
+constexpr double kDefaultEdge = 0.5;         // terrain.edge: the middle of the room between the stances
 
-// The case's up or down platform (Scenario::step_platforms).
-void addStepPlatform(Scenario& s, const EpisodeCase& episode) {
+// The case's up or down platform (Scenario::step_platforms), its edge at
+// `edge` (0 ... 1) of the room between the start's and the landing's footprints.
+void addStepPlatform(Scenario& s, const EpisodeCase& episode, const Footprint& footprint, double edge) {
   const TargetSpec& t = episode.target;
   if (std::abs(t.z) < 1e-9) return;
-  const double distance = std::hypot(t.x, t.y);
   const SourceLocation where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
-  if (distance < 2.0 * kLeastEdgeDistance) {
+  const double distance = std::hypot(t.x, t.y);
+  if (footprint.feet.empty()) throw Error("applyCase: a step platform needs the robot's footprint");
+  // Along the jump direction u (in the start's heading frame), from the start:
+  // the start's foremost foot and the landing's rearmost one.
+  const double ux = distance > 0 ? t.x / distance : 1.0, uy = distance > 0 ? t.y / distance : 0.0;
+  const double c = std::cos(t.yaw), sn = std::sin(t.yaw);
+  double start_front = -1e300, landing_rear = 1e300;
+  for (const Vec3& f : footprint.feet) {
+    start_front = std::max(start_front, f[0] * ux + f[1] * uy);
+    landing_rear = std::min(landing_rear, (t.x + c * f[0] - sn * f[1]) * ux + (t.y + sn * f[0] + c * f[1]) * uy);
+  }
+  const double lo = start_front + kStepEdgeClearance, hi = landing_rear - kStepEdgeClearance;
+  if (!(distance > 0) || hi < lo) {
     throw InputError(where, episode.label + ": target z = " + std::to_string(t.z) +
-                                " m needs a platform edge between the start and the target, but the target is " +
-                                std::to_string(distance) + " m from the start (terrain step_platforms)");
+                                " m needs a platform edge between the start and the target, but its feet at the "
+                                "target stand " + std::to_string(std::max(0.0, lo - hi)) +
+                                " m too near the start's for one (each at least " + std::to_string(kStepEdgeClearance) +
+                                " m from the edge; terrain step_platforms)");
   }
   const PlatformSpec& p = s.platform;
   const double azimuth = p.base_yaw + std::atan2(t.y, t.x);
-  const double edge = distance / 2.0;
+  const double at = lo + edge * (hi - lo);
   const double height = std::abs(t.z);
   // Along the jump direction, from the start: where the box begins and ends.
-  const double from = t.z > 0 ? edge : -kPlatformBehind;
-  const double to = t.z > 0 ? distance + kPlatformBeyond : edge;
+  const double from = t.z > 0 ? at : -kPlatformBehind;
+  const double to = t.z > 0 ? distance + kPlatformBeyond : at;
   const double middle = (from + to) / 2.0;
   TerrainBox box;
   box.name = t.z > 0 ? "landing_platform" : "start_platform";
@@ -176,9 +190,13 @@ void setApexPlatform(Scenario& s, const EpisodeCase& episode) {
 
 }  // namespace
 
-Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode) {
+Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode, const Footprint& footprint) {
   Scenario s = scenario;
-  if (s.step_platforms == StepPlatforms::edge) addStepPlatform(s, episode);
+  double edge = kDefaultEdge;
+  for (const auto& [variable, value] : episode.assignments) {
+    if (variable == "terrain.edge") edge = value;
+  }
+  if (s.step_platforms == StepPlatforms::edge) addStepPlatform(s, episode, footprint, edge);
   if (s.step_platforms == StepPlatforms::apex) setApexPlatform(s, episode);
   for (const auto& [variable, value] : episode.assignments) {
     if (variable == "platform.trunk_mass_offset") s.platform.trunk_mass_offset = value;
@@ -187,6 +205,7 @@ Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode) {
     else if (variable == "joints.kp") s.platform.joints.kp = value;
     else if (variable == "joints.kd") s.platform.joints.kd = value;
     else if (variable == "contact.mu_static") s.sim.contact.mu_static = value;
+    else if (variable == "terrain.edge") continue;  // placed the platform above
     else throw Error("sweep variable '" + variable + "' cannot be applied");
   }
   return s;

@@ -33,6 +33,7 @@ Range rangeOf(const SweepVariable& v) {
   if (n == "joints.kp" || n == "joints.kd" || n == "joints.damping" || n == "contact.mu_static") {
     return Range::nonNegative();
   }
+  if (n == "terrain.edge") return Range::closed(0.0, 1.0);
   return Range::any();
 }
 

@@ -342,6 +342,22 @@ Eigen::VectorXd World::initialJointPositions() const {
   return q;
 }
 
+Footprint World::footprint() const {
+  // The feet and the origins of the bodies that carry them (a quadruped's
+  // knees, which a Go1 or an Aliengo holds behind its feet), at the trunk at
+  // the origin.
+  Footprint footprint;
+  std::vector<Eigen::Vector3d> feet;
+  const std::vector<Eigen::Isometry3d> poses =
+      bodyPosesAt(Eigen::Vector3d::Zero(), Eigen::Vector4d(1, 0, 0, 0), initialJointPositions(), &feet);
+  for (int f = 0; f < footCount(); ++f) {
+    const Eigen::Vector3d knee = poses[static_cast<size_t>(impl_->foot_body[f])].translation();
+    footprint.feet.push_back({feet[f].x(), feet[f].y(), feet[f].z()});
+    footprint.feet.push_back({knee.x(), knee.y(), knee.z()});
+  }
+  return footprint;
+}
+
 void World::reset() {
   const PlatformSpec& p = impl_->platform;
   resetTo(Eigen::Vector3d(p.base_position[0], p.base_position[1], p.base_position[2]), p.base_yaw,
