@@ -178,6 +178,44 @@ void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_r
   has_task_ = true;
 }
 
+void JumpEnvironment::addTerrain(const Eigen::Vector2d& towards, jump::PlannerConfig* config) const {
+  constexpr double kStep = 0.01;         // m between samples of the surface
+  constexpr double kBeyond = 0.3;        // m sampled past the target
+  constexpr double kEdgeHeight = 0.01;   // m: a smaller change of height is no edge
+  const double distance = towards.norm();
+  if (!(distance > 0.0)) return;
+  const Eigen::Vector2d u = towards / distance;
+  std::optional<double> before;
+  for (double s = 0.0; s <= distance + kBeyond; s += kStep) {
+    const Eigen::Vector3d world = start_.origin + start_.heading * Eigen::Vector3d(s * u.x(), s * u.y(), 0.0);
+    const std::optional<TerrainTop> top = terrainTop(host_, world.x(), world.y());
+    if (!top) return;  // an older host, or nothing under the line: no edges known
+    const double height = top->height - start_.origin.z();
+    if (before && std::abs(height - *before) > kEdgeHeight) {
+      config->edges.push_back({s - 0.5 * kStep, std::max(height, *before)});
+    }
+    before = height;
+  }
+  if (config->edges.empty() || !legs_) return;
+  // The hips' and the tucked legs' lowest points and the legs' horizontal reach about the CoM.
+  const std::array<double, 3>& tuck = settings_.jump.flight.tuck;
+  const Eigen::Vector3d q_tuck(tuck[0], tuck[1], tuck[2]);
+  const double radius = settings_.reward.foot_radius;
+  double depth = 0.0, hip_depth = 0.0, reach = 0.0;
+  for (const jump::LegGeometry& leg : *legs_) {
+    const Eigen::Vector3d foot = jump::footPosition(leg, q_tuck) + com_to_trunk_;
+    const Eigen::Vector3d knee = jump::kneePosition(leg, q_tuck) + com_to_trunk_;
+    const Eigen::Vector3d hip = leg.hipPosition() + com_to_trunk_;
+    depth = std::max(depth, radius - foot.z());
+    hip_depth = std::max({hip_depth, radius - knee.z(), radius - hip.z()});
+    reach = std::max(reach, std::abs(hip.x()) + radius);
+  }
+  config->tuck_depth_m = depth;
+  config->hip_depth_m = hip_depth;
+  config->body_reach_m = reach;
+  config->tuck_time_s = FlightPhase::kBlendTime;
+}
+
 std::vector<double> JumpEnvironment::priorAction(const double* observation, std::string* infeasible) {
   if (!has_task_) throw InvalidArgument("prior_action() before reset(): the planner needs the start pose");
   jump::PlannerConfig config;
@@ -189,6 +227,7 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
   jump::JumpTarget target;
   target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
+  addTerrain(target.displacement.head<2>(), &config);
   target.yaw_rad = observation[3];
   // Aimed short by where the controller's landing will stop the CoM.
   const LandingSettings& landing = settings_.jump.landing;

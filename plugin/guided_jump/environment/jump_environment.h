@@ -35,6 +35,7 @@
 #include "control/robot_state.h"
 #include "method/action_mapping.h"
 #include "method/reward.h"
+#include "method/planner.h"
 #include "method/safety_filter.h"
 #include "pronk/plugin_abi.h"
 
@@ -96,6 +97,12 @@ class JumpEnvironment {
   StartFrame frame() const;
 
   std::optional<jump::LegWorkspace> workspace() const;
+
+  // The terrain's edges under the line from the start towards `towards` (start
+  // frame, horizontal) and 0.3 m beyond it, from the host's terrain (ABI 1.6;
+  // none from an older host), and the tucked body's reach and depth around its
+  // CoM: what the planner clears (PlannerConfig::edges).
+  void addTerrain(const Eigen::Vector2d& towards, jump::PlannerConfig* config) const;
 
   jump::BodyState bodyState(const pronk_robot_state& s, const StartFrame& S) const;
 
