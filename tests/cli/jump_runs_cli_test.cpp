@@ -580,19 +580,28 @@ std::string rejectedReason(const std::string& scenario, const std::string& out_n
 }
 
 TEST(JumpRuns, JumpBeyondTheMotorsIsRejectedWithThePredictedTorque) {
-  // A Go1 with a fifth of its effort limits: the safety filter's torque
-  // prediction rejects the forward jump, naming the joint, before it runs (with
-  // a quarter the planner finds a slower push that fits).
+  // A Go1 with a fifth of its effort limits: the planner's torque prediction
+  // finds no push the motors can give, and the forward jump is refused for that
+  // reason, naming the joint, before it runs (with a quarter the planner finds a
+  // slower push that fits).
   std::string output;
   const std::string reason = rejectedReason("go1_weak_motors.xml", "jump_weak_motors", &output);
-  EXPECT_EQ(reason.rfind("torque_limit: ", 0), 0u) << reason;
+  EXPECT_EQ(reason.rfind("torque: ", 0), 0u) << reason;
   EXPECT_NE(reason.find(" would need "), std::string::npos) << reason;
   EXPECT_NE(output.find("simulated nothing"), std::string::npos) << output;
 }
 
-TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRuns) {
+TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRunsWithThePlannersReason) {
   const std::string reason = rejectedReason("go1_impossible_up.xml", "jump_impossible_up");
-  EXPECT_NE(reason.find("apex_below_target"), std::string::npos) << reason;
+  EXPECT_EQ(reason.rfind("action_range: ", 0), 0u) << reason;
+  EXPECT_NE(reason.find("exceeds k_max x the Bezier speed cap"), std::string::npos) << reason;
+}
+
+TEST(JumpRuns, AWallThatCannotBeClearedIsRefusedNamingItsEdge) {
+  const std::string reason = rejectedReason("go1_wall.xml", "jump_wall");
+  EXPECT_EQ(reason.rfind("terrain: the flight passes the edge 0.5", 0), 0u) << reason;
+  EXPECT_NE(reason.find("(top 1.2 m)"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("too low for the tucked legs"), std::string::npos) << reason;
 }
 
 TEST(JumpRuns, PluginWarningsGoToEachJumpsEventsAndOnlyTheFirstTenToStderr) {
@@ -835,8 +844,9 @@ TEST(JumpRuns, ParamFlagSetsAnEnvironmentParameter) {
   // The up-jump runs with the effort box (up.xml). With --param motor=dc its
   // calves would turn near their 20 rad/s no-load speed; the planner's lowest,
   // longest pushes still leave the lift-off more than 0.05 m/s short, so with
-  // --param max_speed_shortfall=0.02 the safety filter refuses it before it runs
-  // and reports the shortfall it predicted.
+  // --param max_speed_shortfall=0.02 the planner finds no plan, the jump is
+  // refused before it runs for the planner's reason, and the safety filter's
+  // predicted shortfall is reported.
   const std::string out = outDir("jump_param_dc_motor");
   const CommandRun r = pronk("run " + source("scenarios/go1/up.xml") +
                              " --policy ballistic --param motor=dc --param max_speed_shortfall=0.02 --out " + out);
@@ -845,7 +855,7 @@ TEST(JumpRuns, ParamFlagSetsAnEnvironmentParameter) {
   ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
   EXPECT_EQ(j[0]["status"], "rejected");
   const std::string reason = j[0]["failure_reason"].get<std::string>();
-  EXPECT_EQ(reason.rfind("torque_limit: ", 0), 0u) << reason;
+  EXPECT_EQ(reason.rfind("torque: ", 0), 0u) << reason;
   EXPECT_NE(reason.find("slower than planned (allowed 0.02)"), std::string::npos) << reason;
   ASSERT_TRUE(j[0]["metrics"].contains("predicted_speed_shortfall")) << j[0]["metrics"].dump();
   EXPECT_GT(j[0]["metrics"]["predicted_speed_shortfall"].get<double>(), 0.02);

@@ -216,7 +216,7 @@ TEST(Planner, SidewaysTargetsLiftOffSteeperByTheSquareOfTheirSidewaysShare) {
 // The body's lowest point over an edge along the flown arc (the hips' until
 // the tuck is done, the tucked feet's after): the least clearance over the
 // times the CoM is within the body's reach of it.
-double leastEdgeClearance(const PlannedJump& plan, const PlannerConfig& cfg, const PlannerConfig::Edge& edge) {
+double leastEdgeClearance(const PlannedJump& plan, const PlannerConfig& cfg, const TerrainEdges::Edge& edge) {
   const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
   const BallisticFlight flight(FlightState{thrust.liftOff().position, thrust.liftOff().velocity}, cfg.gravity);
   const Eigen::Vector2d u = (plan.target_com - cfg.polarOrigin()).head<2>().normalized();
@@ -225,8 +225,8 @@ double leastEdgeClearance(const PlannedJump& plan, const PlannerConfig& cfg, con
   for (double t = 0.0; t <= T; t += 1e-4) {
     const FlightState s = flight.state(t);
     const double x = (s.position - cfg.polarOrigin()).head<2>().dot(u);
-    if (std::abs(x - edge.distance) > cfg.body_reach_m) continue;
-    const double depth = t < cfg.tuck_time_s ? cfg.hip_depth_m : cfg.tuck_depth_m;
+    if (std::abs(x - edge.distance) > cfg.terrain.body_reach_m) continue;
+    const double depth = t < cfg.terrain.tuck_time_s ? cfg.terrain.hip_depth_m : cfg.terrain.tuck_depth_m;
     least = std::min(least, s.position.z() - depth - (cfg.polarOrigin().z() + edge.top));
   }
   return least;
@@ -239,24 +239,24 @@ TEST(Planner, TheFlightClearsAnEdgeOrIsRefusedNamingIt) {
   up.displacement = {1.0, 0.0, 0.4};
   const PlannedJump flat = planJump(up, cfg);
   ASSERT_TRUE(flat.feasible) << flat.reason;
-  const PlannerConfig::Edge edge{0.55, 0.4};
+  const TerrainEdges::Edge edge{0.55, 0.4};
   // Planned as if flat, the tucked body passes the edge's clearance too low.
-  cfg.edges = {edge};
-  EXPECT_LT(leastEdgeClearance(flat, cfg, edge), cfg.edge_clearance_m);
+  cfg.terrain.edges = {edge};
+  EXPECT_LT(leastEdgeClearance(flat, cfg, edge), cfg.terrain.clearance_m);
   const PlannedJump clear = planJump(up, cfg);
   ASSERT_TRUE(clear.feasible) << clear.reason;
-  EXPECT_GE(leastEdgeClearance(clear, cfg, edge), cfg.edge_clearance_m - 2e-3);
+  EXPECT_GE(leastEdgeClearance(clear, cfg, edge), cfg.terrain.clearance_m - 2e-3);
   EXPECT_GT(clear.action.velocity_elevation_rad, flat.action.velocity_elevation_rad);
   EXPECT_GT(clear.apex.z(), flat.apex.z());
   EXPECT_NEAR((flownLanding(clear, cfg) - clear.target_com).norm(), 0.0, 1e-6);
   // A wall 1.5 m high on the way cannot be cleared: refused, naming it.
-  cfg.edges = {{0.55, 1.5}};
+  cfg.terrain.edges = {{0.55, 1.5}};
   const PlannedJump wall = planJump(up, cfg);
   EXPECT_FALSE(wall.feasible);
   EXPECT_EQ(wall.limit, PlanLimit::kTerrain);
   EXPECT_NE(wall.reason.find("edge 0.55 m along the jump (top 1.5 m)"), std::string::npos) << wall.reason;
   // An edge the body never spans in flight (behind the start) changes nothing.
-  cfg.edges = {{-0.6, 0.4}};
+  cfg.terrain.edges = {{-0.6, 0.4}};
   const PlannedJump behind = planJump(up, cfg);
   ASSERT_TRUE(behind.feasible);
   EXPECT_EQ(behind.action.velocity_elevation_rad, flat.action.velocity_elevation_rad);

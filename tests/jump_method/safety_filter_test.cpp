@@ -29,6 +29,38 @@ TEST(SafetyCheck, AcceptsAPlanThatLandsOnTheTarget) {
   EXPECT_STREQ(safetyIssueName(verdict.issue), "none");
 }
 
+TEST(SafetyCheck, RejectsAFlightThatStrikesAnEdgeOnTheWay) {
+  // Onto a 0.4 m box 1 m ahead: a flat 0.3 s flight passes its edge at 0.5 m too
+  // low for the tucked legs (0.17 m below the CoM), a 0.6 s one high enough.
+  const Eigen::Vector3d target(1.0, 0.0, 0.4 + 0.31);
+  SafetyCheck check;
+  check.terrain.edges = {{0.5, 0.4}};
+  const TerrainEdges::Edge& edge = check.terrain.edges[0];
+  auto lowest = [&](const LiftOffVelocity& v) {  // the body's lowest point over the edge, by sampling
+    double least = INFINITY;
+    const BallisticFlight flight(FlightState{kLiftOff, v.velocity}, standardGravity());
+    for (double t = 0.0; t <= v.flight_time; t += 1e-4) {
+      const Eigen::Vector3d c = flight.state(t).position;
+      if (std::abs(c.x() - edge.distance) > check.terrain.body_reach_m) continue;
+      least = std::min(least, c.z() - (t < check.terrain.tuck_time_s ? check.terrain.hip_depth_m
+                                                                     : check.terrain.tuck_depth_m));
+    }
+    return least;
+  };
+  const LiftOffVelocity flat = LiftOffHyperbola(kLiftOff, target).atFlightTime(0.3);
+  const LiftOffVelocity high = LiftOffHyperbola(kLiftOff, target).atFlightTime(0.6);
+  ASSERT_LT(lowest(flat), edge.top + check.terrain.clearance_m);
+  ASSERT_GT(lowest(high), edge.top + check.terrain.clearance_m + 1e-3);
+  const SafetyVerdict low = check(FlightState{kLiftOff, flat.velocity}, target);
+  EXPECT_EQ(low.issue, SafetyIssue::kTerrainEdge);
+  EXPECT_STREQ(safetyIssueName(low.issue), "terrain_edge");
+  EXPECT_NE(low.reason.find("the edge 0.5 m along the jump (top 0.4 m)"), std::string::npos) << low.reason;
+  EXPECT_TRUE(check(FlightState{kLiftOff, high.velocity}, target).safe());
+  // Without edges the low flight is fine.
+  check.terrain.edges.clear();
+  EXPECT_TRUE(check(FlightState{kLiftOff, flat.velocity}, target).safe());
+}
+
 TEST(SafetyCheck, RejectsAnApexBelowTheTarget) {
   // v_z = 1 m/s from 0.36 m: apex 0.411 m, target on a 0.3 m platform at 0.61 m.
   const FlightState lo{kLiftOff, Eigen::Vector3d(1.0, 0.0, 1.0)};

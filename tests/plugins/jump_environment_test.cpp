@@ -77,11 +77,19 @@ TEST_F(JumpEnvironment, PriorActionIsAFeasiblePlanTheFilterAccepts) {
 }
 
 TEST_F(JumpEnvironment, SafetyFilterRejectsAnImpossibleUpJumpBeforeItRuns) {
-  // 1 m up: no action in the ranges gets the CoM that high.
+  // 1 m up: no action in the ranges gets the CoM that high. The planner's best
+  // try is refused for the planner's reason; any other action, by the filter.
   const std::vector<double> obs = env_->reset({0.3, 0, 1.0, 0, 0, 0}, 0, robot_.state());
-  const std::optional<std::string> why = env_->act(env_->priorAction(obs));
+  std::vector<double> best = env_->priorAction(obs);
+  const std::optional<std::string> why = env_->act(best);
   ASSERT_TRUE(why.has_value());
-  EXPECT_THAT(*why, HasSubstr("apex_below_target"));
+  EXPECT_THAT(*why, HasSubstr("action_range: "));
+  EXPECT_THAT(*why, HasSubstr("exceeds k_max x the Bezier speed cap"));
+  env_->reset({0.3, 0, 1.0, 0, 0, 0}, 0, robot_.state());
+  best[0] += 1e-6;
+  const std::optional<std::string> filtered = env_->act(best);
+  ASSERT_TRUE(filtered.has_value());
+  EXPECT_THAT(*filtered, HasSubstr("apex_below_target"));
   // The slowest lift-off (every raw output at its lower end) cannot reach 0.4 m up either.
   env_->reset({0.3, 0, 0.4, 0, 0, 0}, 0, robot_.state());
   const std::optional<std::string> slow = env_->act(std::vector<double>(13, -5.0));

@@ -172,31 +172,33 @@ void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_r
   controller_.reset();
   action_.reset();
   record_ = jump::JumpRecord{};
+  prior_refusal_.reset();
   started_ = false;
   previous_phase_ = JumpPhase::kStand;
   rest_time_.reset();
   has_task_ = true;
 }
 
-void JumpEnvironment::addTerrain(const Eigen::Vector2d& towards, jump::PlannerConfig* config) const {
+jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards) const {
+  jump::TerrainEdges terrain;
   constexpr double kStep = 0.01;         // m between samples of the surface
   constexpr double kBeyond = 0.3;        // m sampled past the target
   constexpr double kEdgeHeight = 0.01;   // m: a smaller change of height is no edge
   const double distance = towards.norm();
-  if (!(distance > 0.0)) return;
+  if (!(distance > 0.0)) return terrain;
   const Eigen::Vector2d u = towards / distance;
   std::optional<double> before;
   for (double s = 0.0; s <= distance + kBeyond; s += kStep) {
     const Eigen::Vector3d world = start_.origin + start_.heading * Eigen::Vector3d(s * u.x(), s * u.y(), 0.0);
     const std::optional<TerrainTop> top = terrainTop(host_, world.x(), world.y());
-    if (!top) return;  // an older host, or nothing under the line: no edges known
+    if (!top) return {};  // an older host, or nothing under the line: no edges known
     const double height = top->height - start_.origin.z();
     if (before && std::abs(height - *before) > kEdgeHeight) {
-      config->edges.push_back({s - 0.5 * kStep, std::max(height, *before)});
+      terrain.edges.push_back({s - 0.5 * kStep, std::max(height, *before)});
     }
     before = height;
   }
-  if (config->edges.empty() || !legs_) return;
+  if (terrain.edges.empty() || !legs_) return terrain;
   // The hips' and the tucked legs' lowest points and the legs' horizontal reach about the CoM.
   const std::array<double, 3>& tuck = settings_.jump.flight.tuck;
   const Eigen::Vector3d q_tuck(tuck[0], tuck[1], tuck[2]);
@@ -210,10 +212,11 @@ void JumpEnvironment::addTerrain(const Eigen::Vector2d& towards, jump::PlannerCo
     hip_depth = std::max({hip_depth, radius - knee.z(), radius - hip.z()});
     reach = std::max(reach, std::abs(hip.x()) + radius);
   }
-  config->tuck_depth_m = depth;
-  config->hip_depth_m = hip_depth;
-  config->body_reach_m = reach;
-  config->tuck_time_s = FlightPhase::kBlendTime;
+  terrain.tuck_depth_m = depth;
+  terrain.hip_depth_m = hip_depth;
+  terrain.body_reach_m = reach;
+  terrain.tuck_time_s = FlightPhase::kBlendTime;
+  return terrain;
 }
 
 std::vector<double> JumpEnvironment::priorAction(const double* observation, std::string* infeasible) {
@@ -227,7 +230,7 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
   jump::JumpTarget target;
   target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
-  addTerrain(target.displacement.head<2>(), &config);
+  config.terrain = terrainEdges(target.displacement.head<2>());
   target.yaw_rad = observation[3];
   // Aimed short by where the controller's landing will stop the CoM.
   const LandingSettings& landing = settings_.jump.landing;
@@ -238,7 +241,9 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   }
   if (!plan.feasible && infeasible) *infeasible = "no feasible jump: " + plan.reason;
   const jump::ActionVector raw = jump::unmapAction(plan.action, settings_.ranges);
-  return std::vector<double>(raw.begin(), raw.end());
+  std::vector<double> action(raw.begin(), raw.end());
+  if (!plan.feasible) prior_refusal_ = PriorRefusal{action, std::string(jump::planLimitName(plan.limit)) + ": " + plan.reason};
+  return action;
 }
 
 void JumpEnvironment::act(const double* raw_action) {
@@ -286,11 +291,18 @@ void JumpEnvironment::act(const double* raw_action) {
   // The safety filter: nothing runs that cannot work.
   jump::SafetyCheck ballistic;
   ballistic.gravity = gravity_;
+  // The edges on the way: refused where the flight's model strikes one (the
+  // planner keeps its clearance margin; the filter refuses only a strike).
+  ballistic.terrain = terrainEdges(target.head<2>());
+  ballistic.terrain.clearance_m = 0.0;
   const std::optional<jump::LegWorkspace> ws = workspace();
   const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, ws);
   if (safety.speed_shortfall) metric("predicted_speed_shortfall", *safety.speed_shortfall);
   if (ws) metric("planned_knee_clearance", jump::thrustKneeClearance(plan, mapped.action, *ws));
   if (!safety.verdict) {
+    if (prior_refusal_ && std::equal(prior_refusal_->raw_action.begin(), prior_refusal_->raw_action.end(), raw.begin())) {
+      throw Rejected(prior_refusal_->reason);
+    }
     throw Rejected(std::string(jump::safetyIssueName(safety.verdict.issue)) + ": " + safety.verdict.reason);
   }
 

@@ -100,9 +100,9 @@ class JumpEnvironment {
 
   // The terrain's edges under the line from the start towards `towards` (start
   // frame, horizontal) and 0.3 m beyond it, from the host's terrain (ABI 1.6;
-  // none from an older host), and the tucked body's reach and depth around its
-  // CoM: what the planner clears (PlannerConfig::edges).
-  void addTerrain(const Eigen::Vector2d& towards, jump::PlannerConfig* config) const;
+  // none from an older host), with the hips' and the tucked legs' depth and
+  // reach about the CoM: what the planner clears and the safety filter checks.
+  jump::TerrainEdges terrainEdges(const Eigen::Vector2d& towards) const;
 
   jump::BodyState bodyState(const pronk_robot_state& s, const StartFrame& S) const;
 
@@ -133,6 +133,15 @@ class JumpEnvironment {
   JumpPhase previous_phase_ = JumpPhase::kStand;
   jump::JumpRecord record_;
   std::optional<double> rest_time_;
+  // The planner's best try and why it is infeasible, from this episode's
+  // prior_action(): act() given that very action refuses it for the planner's
+  // reason (the edge it cannot clear, the foot it loses) rather than for the
+  // safety filter's finding on a clamped try.
+  struct PriorRefusal {
+    std::vector<double> raw_action;
+    std::string reason;
+  };
+  std::optional<PriorRefusal> prior_refusal_;
 };
 
 }  // namespace pronk::guided_jump

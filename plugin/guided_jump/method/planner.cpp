@@ -39,43 +39,6 @@ struct Member {
   std::string problem;  // when !ok
 };
 
-// How far (m) the tucked body's lowest point passes below an edge's clearance
-// on the flight from c_e at velocity v to the height of c_tg (<= 0: it clears
-// them all), and which edge is worst.
-struct EdgePass {
-  double shortfall = -std::numeric_limits<double>::infinity();
-  const PlannerConfig::Edge* edge = nullptr;
-};
-EdgePass edgePass(const Eigen::Vector3d& c_e, const Eigen::Vector3d& v, const Eigen::Vector3d& c_tg,
-                  const PlannerConfig& cfg) {
-  EdgePass pass;
-  const Eigen::Vector3d o = cfg.polarOrigin();
-  const Eigen::Vector2d towards = (c_tg - o).head<2>();
-  const double vh = v.head<2>().norm();
-  if (!(towards.norm() > 0.0) || !(vh > 0.0)) return pass;
-  const Eigen::Vector2d u = towards.normalized();
-  const double x0 = (c_e - o).head<2>().dot(u), speed = v.head<2>().dot(u);
-  if (!(speed > 0.0)) return pass;
-  const BallisticFlight flight(FlightState{c_e, v}, cfg.gravity);
-  const double T = flight.landingTime(c_tg.z()).value_or(0.0);
-  const double g = -cfg.gravity.z();
-  const auto z = [&](double t) { return c_e.z() + v.z() * t - 0.5 * g * t * t; };
-  for (const PlannerConfig::Edge& e : cfg.edges) {
-    // The times the body spans the edge, within the flight; its lowest point
-    // is the hips' until the tuck is done, the tucked feet's after. A parabola
-    // is lowest at an end of an interval.
-    const double t1 = std::max(0.0, (e.distance - cfg.body_reach_m - x0) / speed);
-    const double t2 = std::min(T, (e.distance + cfg.body_reach_m - x0) / speed);
-    if (t1 > t2) continue;
-    const double clear = o.z() + e.top + cfg.edge_clearance_m;
-    double shortfall = -std::numeric_limits<double>::infinity();
-    const double tuck = std::clamp(cfg.tuck_time_s, t1, t2);
-    if (tuck > t1) shortfall = std::max(shortfall, clear + cfg.hip_depth_m - std::min(z(t1), z(tuck)));
-    if (t2 > tuck || tuck == t1) shortfall = std::max(shortfall, clear + cfg.tuck_depth_m - std::min(z(tuck), z(t2)));
-    if (shortfall > pass.shortfall) pass = {shortfall, &e};
-  }
-  return pass;
-}
 
 // lambda^2 of the sideways rule (docs/method-planner.md, step 3): lambda is the
 // squared sine of the jump plane's azimuth off the trunk's heading halfway
@@ -133,28 +96,28 @@ Member chooseMember(const Eigen::Vector3d& c_e, const Eigen::Vector3d& c_tg, boo
     m.problem = "no ballistic solution at the chosen elevation";
     return m;
   }
-  if (!cfg.edges.empty()) {
-    // Steeper until the tucked body clears every edge it spans in flight.
-    // No faster than the thrust can lift off (the Bezier speed cap times the
-    // largest speed ratio).
+  if (!cfg.terrain.edges.empty()) {
+    // Steeper until the body clears every edge it spans in flight, no faster
+    // than the thrust can lift off (the Bezier speed cap times the largest
+    // speed ratio).
     constexpr double kElevationStep = 0.005;  // rad
     const double steepest = std::min(el.max, highest);
     const double fastest = std::min(cfg.max_bezier_speed_mps, cfg.ranges[P::kLiftOffSpeed].max) *
                            cfg.ranges[P::kSpeedRatio].max;
-    EdgePass pass = edgePass(c_e, v->velocity, c_tg, cfg);
-    while (pass.shortfall > 0.0 && theta + kElevationStep <= steepest) {
-      const std::optional<LiftOffVelocity> steeper = hyp.atElevation(theta + kElevationStep, std::tan(theta + kElevationStep));
+    const Eigen::Vector3d o = cfg.polarOrigin();
+    EdgePass pass = edgePass(cfg.terrain, o, c_e, v->velocity, c_tg, cfg.gravity);
+    while (!pass.clears() && theta + kElevationStep <= steepest) {
+      const std::optional<LiftOffVelocity> steeper =
+          hyp.atElevation(theta + kElevationStep, std::tan(theta + kElevationStep));
       if (!steeper || steeper->velocity.norm() > fastest) break;
       theta += kElevationStep;
       v = steeper;
-      pass = edgePass(c_e, v->velocity, c_tg, cfg);
+      pass = edgePass(cfg.terrain, o, c_e, v->velocity, c_tg, cfg.gravity);
     }
-    if (pass.shortfall > 0.0) {
+    if (!pass.clears()) {
       std::ostringstream msg;
-      msg << "the flight passes the edge " << pass.edge->distance << " m along the jump (top " << pass.edge->top
-          << " m) " << pass.shortfall << " m too low for the tucked legs to clear it by " << cfg.edge_clearance_m
-          << " m at the steepest lift-off the thrust can give (velocity elevation " << theta << " rad, "
-          << v->velocity.norm() << " m/s)";
+      msg << edgeProblem(cfg.terrain, pass) << " at the steepest lift-off the thrust can give (velocity elevation "
+          << theta << " rad, " << v->velocity.norm() << " m/s)";
       m.ok = false;
       m.terrain = true;
       m.problem = msg.str();
@@ -521,14 +484,11 @@ void PlannerConfig::check() const {
     configError("max_explosive_acceleration must be > 0");
   }
   if (!(std::isfinite(min_apex_rise_m) && min_apex_rise_m >= 0.0)) configError("min_apex_rise_m must be >= 0");
-  for (const Edge& e : edges) {
-    if (!std::isfinite(e.distance) || !std::isfinite(e.top)) configError("an edge's distance and top must be finite");
+  try {
+    terrain.check();
+  } catch (const std::invalid_argument& e) {
+    configError(e.what());
   }
-  if (!(std::isfinite(body_reach_m) && body_reach_m >= 0.0)) configError("body_reach_m must be >= 0");
-  if (!(std::isfinite(tuck_depth_m) && tuck_depth_m >= 0.0)) configError("tuck_depth_m must be >= 0");
-  if (!(std::isfinite(hip_depth_m) && hip_depth_m >= 0.0)) configError("hip_depth_m must be >= 0");
-  if (!(std::isfinite(tuck_time_s) && tuck_time_s >= 0.0)) configError("tuck_time_s must be >= 0");
-  if (!(std::isfinite(edge_clearance_m) && edge_clearance_m >= 0.0)) configError("edge_clearance_m must be >= 0");
   if (!std::isnan(sideways_elevation_rad) && !(sideways_elevation_rad > 0.0 && sideways_elevation_rad < kPi / 2.0)) {
     configError("sideways_elevation_rad must be in (0, pi/2) rad, or NaN (off)");
   }

@@ -45,6 +45,7 @@
 
 #include "method/action_mapping.h"
 #include "method/ballistics.h"
+#include "method/edge_clearance.h"
 #include "method/explosive_phase.h"
 #include "method/leg_ik.h"
 #include "method/motor_model.h"
@@ -133,27 +134,11 @@ struct PlannerConfig {
   // step 12). The torque check still refuses what the motors cannot push.
   std::vector<double> harder_explosive_accelerations{25.0, 30.0, 35.0};
 
-  // The terrain's edges under the jump line: where the surface's height
-  // changes, as a distance along the jump's horizontal direction from the
-  // polar origin (m) and the higher side's height above the take-off surface
-  // (m). While the body spans an edge in flight (its CoM within body_reach_m
-  // of it, horizontally), its lowest point must pass edge_clearance_m above the
-  // edge: the hips and knees, hip_depth_m below the CoM, from lift-off on; the
-  // tucked feet, tuck_depth_m below it, once the tuck is done, tuck_time_s
-  // after lift-off (before, the flight's terrain clearance lifts the feet:
-  // control/terrain_clearance.h). The velocity elevation is raised until it
-  // passes, and a jump that cannot is refused (PlanLimit::kTerrain) naming the
-  // edge and the shortfall. Empty: flat.
-  struct Edge {
-    double distance = 0.0;  // m
-    double top = 0.0;       // m
-  };
-  std::vector<Edge> edges;
-  double body_reach_m = 0.21;
-  double hip_depth_m = 0.06;
-  double tuck_depth_m = 0.17;
-  double tuck_time_s = 0.1;
-  double edge_clearance_m = 0.03;
+  // The terrain's edges under the jump line (empty: flat). Where the flight
+  // would pass one too low, the velocity elevation is raised until it clears
+  // (edge_clearance.h), no faster than the thrust can lift off; a jump that
+  // cannot is refused (PlanLimit::kTerrain) naming the edge and the shortfall.
+  TerrainEdges terrain;
 
   std::optional<LegWorkspace> workspace;  // empty: legs and support not checked
   // With a workspace: the least share of the mean vertical foot force any
@@ -174,7 +159,7 @@ enum class PlanLimit {
   kLegWorkspace,   // every candidate loses a foot somewhere on the thrust path
   kSupport,        // every candidate in reach would need a foot to pull
   kTorque,         // every candidate in reach and support needs more torque than the motors have
-  kTerrain,        // the flight cannot clear an edge of the terrain (PlannerConfig::edges)
+  kTerrain,        // the flight cannot clear an edge of the terrain (PlannerConfig::terrain)
 };
 // "none", "action_range", "explosive", "leg_workspace", "support", "torque", "terrain"
 const char* planLimitName(PlanLimit limit);

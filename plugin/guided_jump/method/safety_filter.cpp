@@ -32,6 +32,8 @@ const char* safetyIssueName(SafetyIssue issue) {
       return "leg_workspace";
     case SafetyIssue::kTorqueLimit:
       return "torque_limit";
+    case SafetyIssue::kTerrainEdge:
+      return "terrain_edge";
   }
   return "unknown";
 }
@@ -71,6 +73,8 @@ SafetyVerdict SafetyCheck::operator()(const FlightState& lift_off, const Eigen::
     return {SafetyIssue::kOutsideWorkspace,
             fmt::format("lift-off position ({:.4f}, {:.4f}, {:.4f}) m is outside the leg workspace", p.x(), p.y(), p.z())};
   }
+  const EdgePass pass = edgePass(terrain, terrain_origin, p, v, target, gravity);
+  if (!pass.clears()) return {SafetyIssue::kTerrainEdge, edgeProblem(terrain, pass)};
   return {};
 }
 

@@ -19,6 +19,7 @@
 
 #include "method/action_mapping.h"
 #include "method/ballistics.h"
+#include "method/edge_clearance.h"
 #include "method/explosive_phase.h"
 #include "method/leg_ik.h"
 #include "method/motor_model.h"
@@ -35,8 +36,9 @@ enum class SafetyIssue {
   kLegWorkspace,       // a stance foot leaves the leg workspace, or a knee comes down to the ground, on the
                        // thrust path (thrustLeavesWorkspace)
   kTorqueLimit,        // the motors would miss the lift-off speed by too much (thrustExceedsTorque)
+  kTerrainEdge,        // the flight passes an edge of the terrain too low (edge_clearance.h)
 };
-// "none", "not_finite", "apex_below_target", ..., "leg_workspace", "torque_limit"
+// "none", "not_finite", "apex_below_target", ..., "leg_workspace", "torque_limit", "terrain_edge"
 const char* safetyIssueName(SafetyIssue issue);
 
 struct SafetyVerdict {
@@ -54,7 +56,9 @@ struct SafetyVerdict {
 //   3. the CoM comes down through target.z (descending root exists) and, when
 //      max_landing_miss is finite, lands within max_landing_miss (horizontal
 //      distance, m) of the target;
-//   4. workspace(lift-off position) is true, when a predicate is given.
+//   4. workspace(lift-off position) is true, when a predicate is given;
+//   5. the flight passes every edge of `terrain` high enough (edgePass from
+//      terrain_origin, the polar origin), when it has edges.
 struct SafetyCheck {
   Eigen::Vector3d gravity = standardGravity();
   double apex_clearance = 0.0;                                        // m
@@ -62,6 +66,8 @@ struct SafetyCheck {
   // Caller-supplied: true when the lift-off CoM position is inside the leg
   // workspace (e.g. all feet reachable by IK, see leg_ik.h). Empty: not checked.
   std::function<bool(const Eigen::Vector3d& lift_off_position)> workspace;
+  TerrainEdges terrain;                                    // empty: flat
+  Eigen::Vector3d terrain_origin = Eigen::Vector3d::Zero();  // the polar origin the edges are measured from
 
   SafetyVerdict operator()(const FlightState& lift_off, const Eigen::Vector3d& target) const;
 };
