@@ -147,7 +147,7 @@ void addStepPlatform(Scenario& s, const EpisodeCase& episode, const Footprint& f
   const double lo = start_front + kStepEdgeClearance, hi = landing_rear - kStepEdgeClearance;
   if (!(distance > 0) || hi < lo) {
     throw InputError(where, episode.label + ": target z = " + std::to_string(t.z) +
-                                " m needs a platform edge between the start and the target, but its feet at the "
+                                " m needs a platform edge between the start and the target, but its feet and knees at the "
                                 "target stand " + std::to_string(std::max(0.0, lo - hi)) +
                                 " m too near the start's for one (each at least " + std::to_string(kStepEdgeClearance) +
                                 " m from the edge; terrain step_platforms)");
