@@ -597,6 +597,17 @@ TEST(JumpRuns, ImpossibleUpJumpIsRejectedBeforeAnythingRunsWithThePlannersReason
   EXPECT_NE(reason.find("exceeds k_max x the Bezier speed cap"), std::string::npos) << reason;
 }
 
+// Onto a 0.3 m box whose edge lies 11 cm and 2 cm ahead of the front feet: the
+// planner finds no push that keeps the hips and legs above the edge, so each jump
+// is refused before it runs (the 2 cm one naming the edge); neither strikes it.
+TEST(JumpRuns, ABoxJustAheadOfTheFeetIsRefusedNotStruck) {
+  std::string reason = rejectedReason("go1_box_2cm.xml", "jump_box_2cm");
+  EXPECT_EQ(reason.rfind("terrain: the thrust carries the hips over the edge 0.2", 0), 0u) << reason;
+  EXPECT_NE(reason.find("(top 0.3 m)"), std::string::npos) << reason;
+  reason = rejectedReason("go1_box_11cm.xml", "jump_box_11cm");
+  EXPECT_FALSE(reason.empty());
+}
+
 TEST(JumpRuns, AWallThatCannotBeClearedIsRefusedNamingItsEdge) {
   const std::string reason = rejectedReason("go1_wall.xml", "jump_wall");
   EXPECT_EQ(reason.rfind("terrain: the flight passes the edge 0.5", 0), 0u) << reason;

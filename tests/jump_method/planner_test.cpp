@@ -262,6 +262,29 @@ TEST(Planner, TheFlightClearsAnEdgeOrIsRefusedNamingIt) {
   EXPECT_EQ(behind.action.velocity_elevation_rad, flat.action.velocity_elevation_rad);
 }
 
+TEST(Planner, AThrustThatWouldCarryTheHipsOverANearEdgeIsRefused) {
+  // Onto a 0.3 m box whose edge lies 0.225 m ahead, 3.5 cm before the front
+  // feet: every push carries the hips over it below its top, or flies them into it.
+  PlannerConfig cfg = go1Config(true);
+  JumpTarget up;
+  up.displacement = {0.75, 0.0, 0.3};
+  cfg.terrain.edges = {{0.225, 0.3}};
+  const PlannedJump near = planJump(up, cfg);
+  EXPECT_FALSE(near.feasible);
+  EXPECT_EQ(near.limit, PlanLimit::kTerrain);
+  EXPECT_NE(near.reason.find("the edge 0.225 m along the jump (top 0.3 m)"), std::string::npos) << near.reason;
+  // The check itself: the planned thrust of the same target on flat ground
+  // reaches over that edge too low, and over an edge 1 m further it does not.
+  cfg.terrain.edges.clear();
+  const PlannedJump flat = planJump(up, cfg);
+  ASSERT_TRUE(flat.feasible) << flat.reason;
+  const ThrustPlan thrust(flat.action, flat.azimuth_rad, cfg.start_com, cfg.polarOrigin());
+  cfg.terrain.edges = {{0.225, 0.3}};
+  EXPECT_FALSE(thrustEdgePass(cfg.terrain, cfg.polarOrigin(), thrust, flat.target_com).clears());
+  cfg.terrain.edges = {{1.225, 0.3}};
+  EXPECT_TRUE(thrustEdgePass(cfg.terrain, cfg.polarOrigin(), thrust, flat.target_com).clears());
+}
+
 TEST(Planner, WithoutTheStillStartUsesTheFixedOffsets) {
   PlannerConfig cfg = go1Config(false);
   cfg.still_start_first = false;

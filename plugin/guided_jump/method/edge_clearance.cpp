@@ -55,6 +55,36 @@ EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, co
   return pass;
 }
 
+EdgePass thrustEdgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const ThrustPlan& thrust,
+                        const Eigen::Vector3d& c_tg) {
+  constexpr int kSamples = 40;
+  EdgePass pass;
+  if (terrain.edges.empty()) return pass;
+  const Eigen::Vector2d towards = (c_tg - origin).head<2>();
+  if (!(towards.norm() > 0.0)) return pass;
+  const Eigen::Vector2d u = towards.normalized();
+  for (int i = 0; i <= kSamples; ++i) {
+    const Eigen::Vector3d c = thrust.position(thrust.duration() * i / kSamples);
+    const double x = (c - origin).head<2>().dot(u);
+    for (const TerrainEdges::Edge& e : terrain.edges) {
+      if (std::abs(x - e.distance) > terrain.body_reach_m) continue;
+      const double shortfall = origin.z() + e.top + terrain.clearance_m + terrain.hip_depth_m - c.z();
+      if (shortfall > pass.shortfall) {
+        pass.shortfall = shortfall;
+        pass.edge = e;
+      }
+    }
+  }
+  return pass;
+}
+
+std::string thrustEdgeProblem(const TerrainEdges& terrain, const EdgePass& pass) {
+  if (pass.clears() || !pass.edge) return "";
+  return fmt::format("the thrust carries the hips over the edge {:.3g} m along the jump (top {:.3g} m) {:.3f} m too "
+                     "low to clear it by {:.3g} m",
+                     pass.edge->distance, pass.edge->top, pass.shortfall, terrain.clearance_m);
+}
+
 std::string edgeProblem(const TerrainEdges& terrain, const EdgePass& pass) {
   if (pass.clears() || !pass.edge) return "";
   return fmt::format("the flight passes the edge {:.3g} m along the jump (top {:.3g} m) {:.3f} m too low for the "

@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include "method/explosive_phase.h"
+
 namespace pronk::jump {
 
 struct TerrainEdges {
@@ -49,8 +51,17 @@ struct EdgePass {
 EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const Eigen::Vector3d& c_e,
                   const Eigen::Vector3d& v, const Eigen::Vector3d& c_tg, const Eigen::Vector3d& gravity);
 
+// The same on the thrust, before lift-off: while the CoM on the thrust's path
+// is within body_reach_m of an edge, the hips (hip_depth_m below it) must be
+// clearance_m above it: a push that carries the trunk's front over a box's edge
+// below its top drives a hip into its face. 40 samples of the path.
+EdgePass thrustEdgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const ThrustPlan& thrust,
+                        const Eigen::Vector3d& c_tg);
+
 // "the flight passes the edge D m along the jump (top H m) S m too low for the
 // tucked legs to clear it by C m"; empty when it clears.
 std::string edgeProblem(const TerrainEdges& terrain, const EdgePass& pass);
+// "the thrust carries the hips over the edge D m along the jump (top H m) S m too low ..."
+std::string thrustEdgeProblem(const TerrainEdges& terrain, const EdgePass& pass);
 
 }  // namespace pronk::jump

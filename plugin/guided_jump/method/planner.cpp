@@ -559,6 +559,7 @@ PlannedJump searchCandidates(const JumpTarget& target, const PlannerConfig& conf
   std::optional<Rejection> leg_failure;
   std::optional<Rejection> support_failure;
   std::optional<Rejection> torque_failure;
+  std::optional<std::string> terrain_failure;  // the thrust reaches over an edge too low
   std::optional<std::array<LegReachCheck, kLegCount>> reach;
   if (config.workspace) reach = reachChecks(*config.workspace);
   // Candidates in order: each rise, with the still start first (when enabled),
@@ -588,6 +589,18 @@ PlannedJump searchCandidates(const JumpTarget& target, const PlannerConfig& conf
         }
         if (!core) placement_core = core = solveCandidateCore(frame, config, cand);
         PlannedJump plan = planCandidate(target, config, *core, cand, false);
+        if (plan.feasible && !config.terrain.edges.empty()) {
+          // The thrust's path must keep the hips above the edges it reaches over.
+          if (!thrust) thrust.emplace(plan.action, plan.azimuth_rad, config.start_com, polar_origin);
+          const EdgePass pass = thrustEdgePass(config.terrain, polar_origin, *thrust, plan.target_com);
+          if (!pass.clears()) {
+            plan.feasible = false;
+            plan.limit = PlanLimit::kTerrain;
+            if (!terrain_failure) terrain_failure = thrustEdgeProblem(config.terrain, pass);
+            if (!first_failure) first_failure = Rejection{plan, *core, cand};
+            continue;
+          }
+        }
         if (plan.feasible && config.workspace) {
           // The leg checks, in order; the first that fails classifies the candidate.
           auto reject = [&](PlanLimit limit, std::optional<Rejection>& first_of_kind) {
@@ -630,7 +643,17 @@ PlannedJump searchCandidates(const JumpTarget& target, const PlannerConfig& conf
   }
   if (torque_failure) return explained(*torque_failure, target, config);
   if (support_failure) return explained(*support_failure, target, config);
-  return explained(leg_failure ? *leg_failure : *first_failure, target, config);
+  if (leg_failure) return explained(*leg_failure, target, config);
+  if (terrain_failure) {
+    // Every candidate that passed the ranges reaches over an edge too low.
+    PlannedJump plan = explained(*first_failure, target, config);
+    plan.feasible = false;
+    plan.limit = PlanLimit::kTerrain;
+    plan.limiting_parameter.reset();
+    plan.reason = *terrain_failure;
+    return plan;
+  }
+  return explained(*first_failure, target, config);
 }
 
 }  // namespace

@@ -308,6 +308,10 @@ SafetyFilterResult safetyFilter(const JumpAction& action, const ThrustPlan& thru
   SafetyFilterResult result;
   const PointState& lift_off = thrust.liftOff();
   result.verdict = ballistic({lift_off.position, lift_off.velocity}, target_com);
+  if (result.verdict) {
+    const EdgePass pass = thrustEdgePass(ballistic.terrain, ballistic.terrain_origin, thrust, target_com);
+    if (!pass.clears()) result.verdict = {SafetyIssue::kTerrainEdge, thrustEdgeProblem(ballistic.terrain, pass)};
+  }
   if (!result.verdict || !workspace) return result;
   const LegWorkspace& ws = *workspace;
   if (std::optional<std::string> out = workspaceProblem(thrust, action, ws, reachChecks(ws), true)) {
