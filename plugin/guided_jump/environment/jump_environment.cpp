@@ -221,6 +221,7 @@ jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards)
 
 std::vector<double> JumpEnvironment::priorAction(const double* observation, std::string* infeasible) {
   if (!has_task_) throw InvalidArgument("prior_action() before reset(): the planner needs the start pose");
+  prior_refusal_.reset();  // only the last answer's best try is the planner's
   jump::PlannerConfig config;
   config.ranges = settings_.ranges;
   config.gravity = gravity_;
