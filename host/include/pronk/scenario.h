@@ -353,7 +353,7 @@ std::vector<EpisodeCase> sweepCases(const Scenario& scenario, const std::string&
 // (its feet and knees), in its trunk frame at the platform's stance
 // (World::footprint()). The step platforms' edges keep clear of them.
 struct Footprint {
-  std::vector<Vec3> feet;  // m, trunk frame
+  std::vector<Vec3> points;  // m, trunk frame
 };
 
 // The scenario with a case's non-target assignments applied and, with

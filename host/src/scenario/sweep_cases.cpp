@@ -134,13 +134,13 @@ void addStepPlatform(Scenario& s, const EpisodeCase& episode, const Footprint& f
   if (std::abs(t.z) < 1e-9) return;
   const SourceLocation where = t.where.file.empty() ? SourceLocation{s.file, 0} : t.where;
   const double distance = std::hypot(t.x, t.y);
-  if (footprint.feet.empty()) throw Error("applyCase: a step platform needs the robot's footprint");
+  if (footprint.points.empty()) throw Error("applyCase: a step platform needs the robot's footprint");
   // Along the jump direction u (in the start's heading frame), from the start:
   // the start's foremost foot and the landing's rearmost one.
   const double ux = distance > 0 ? t.x / distance : 1.0, uy = distance > 0 ? t.y / distance : 0.0;
   const double c = std::cos(t.yaw), sn = std::sin(t.yaw);
   double start_front = -1e300, landing_rear = 1e300;
-  for (const Vec3& f : footprint.feet) {
+  for (const Vec3& f : footprint.points) {
     start_front = std::max(start_front, f[0] * ux + f[1] * uy);
     landing_rear = std::min(landing_rear, (t.x + c * f[0] - sn * f[1]) * ux + (t.y + sn * f[0] + c * f[1]) * uy);
   }

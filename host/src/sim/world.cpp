@@ -352,8 +352,8 @@ Footprint World::footprint() const {
       bodyPosesAt(Eigen::Vector3d::Zero(), Eigen::Vector4d(1, 0, 0, 0), initialJointPositions(), &feet);
   for (int f = 0; f < footCount(); ++f) {
     const Eigen::Vector3d knee = poses[static_cast<size_t>(impl_->foot_body[f])].translation();
-    footprint.feet.push_back({feet[f].x(), feet[f].y(), feet[f].z()});
-    footprint.feet.push_back({knee.x(), knee.y(), knee.z()});
+    footprint.points.push_back({feet[f].x(), feet[f].y(), feet[f].z()});
+    footprint.points.push_back({knee.x(), knee.y(), knee.z()});
   }
   return footprint;
 }

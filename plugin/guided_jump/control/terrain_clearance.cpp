@@ -17,9 +17,8 @@ namespace {
 constexpr double kSameSurface = 0.02;  // m
 }  // namespace
 
-double TerrainClearance::shortfall(const pronk_robot_state& s, int f, const Eigen::Vector3d& q,
+double TerrainClearance::shortfall(const pronk_robot_state& s, const Eigen::Matrix3d& R, int f, const Eigen::Vector3d& q,
                                    double landing_surface) const {
-  const Eigen::Matrix3d R = rotationOf(s);
   const Eigen::Vector3d base = vec(s.base_position);
   const pronk_host_api* host = drive_.host();
   const double radius = host->foot_radius ? host->foot_radius(host->host, f) : 0.0;
@@ -81,7 +80,7 @@ double TerrainClearance::apply(const pronk_robot_state& s, const JumpPlan& plan)
     Eigen::Vector3d q = drive_.q_ref().segment<3>(3 * f);
     double lift = 0.0;
     for (int pass = 0; pass < kPasses; ++pass) {
-      const double dip = shortfall(s, f, q, landing_surface);
+      const double dip = shortfall(s, R, f, q, landing_surface);
       if (!(dip > 1e-4)) break;
       q = drive_.legIk(f, footInTrunk(f, q) + R.transpose() * Eigen::Vector3d(0, 0, dip));
       lift += dip;

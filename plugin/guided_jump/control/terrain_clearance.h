@@ -30,8 +30,10 @@ class TerrainClearance {
   double apply(const pronk_robot_state& s, const JumpPlan& plan);
 
  private:
-  // The deepest shortfall of foot f's leg at joints q (m, <= 0 when clear).
-  double shortfall(const pronk_robot_state& s, int f, const Eigen::Vector3d& q, double landing_surface) const;
+  // The deepest shortfall of foot f's leg at joints q, with the trunk at s and
+  // turned by R (m, <= 0 when clear).
+  double shortfall(const pronk_robot_state& s, const Eigen::Matrix3d& R, int f, const Eigen::Vector3d& q,
+                   double landing_surface) const;
 
   // Foot f at its leg's joints q, trunk frame (the analytic leg model when there is one).
   Eigen::Vector3d footInTrunk(int f, const Eigen::Vector3d& q) const;
