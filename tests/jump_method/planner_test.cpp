@@ -6,6 +6,7 @@
 
 #include "method/fixed_point.h"
 #include "method/orientation_trajectory.h"
+#include "edge_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -213,50 +214,40 @@ TEST(Planner, SidewaysTargetsLiftOffSteeperByTheSquareOfTheirSidewaysShare) {
   EXPECT_THROW(planJump({{0.0, 0.3, 0.0}, 0.0}, off), std::invalid_argument);
 }
 
-// The body's lowest point over an edge along the flown arc (the hips' until
-// the tuck is done, the tucked feet's after): the least clearance over the
-// times the CoM is within the body's reach of it.
+// The body's least clearance over an edge along the flown arc
+// (edge_reference.h).
 double leastEdgeClearance(const PlannedJump& plan, const PlannerConfig& cfg, const TerrainEdges::Edge& edge) {
   const ThrustPlan thrust(plan.action, plan.azimuth_rad, cfg.start_com, cfg.polarOrigin());
-  const BallisticFlight flight(FlightState{thrust.liftOff().position, thrust.liftOff().velocity}, cfg.gravity);
   const Eigen::Vector2d u = (plan.target_com - cfg.polarOrigin()).head<2>().normalized();
-  const double T = *flight.landingTime(plan.target_com.z());
-  double least = std::numeric_limits<double>::infinity();
-  for (double t = 0.0; t <= T; t += 1e-4) {
-    const FlightState s = flight.state(t);
-    const double x = (s.position - cfg.polarOrigin()).head<2>().dot(u);
-    if (std::abs(x - edge.distance) > cfg.terrain.body_reach_m) continue;
-    const double depth = t < cfg.terrain.tuck_time_s ? cfg.terrain.hip_depth_m : cfg.terrain.tuck_depth_m;
-    least = std::min(least, s.position.z() - depth - (cfg.polarOrigin().z() + edge.top));
-  }
-  return least;
+  return reference::leastClearanceOver(cfg.terrain, edge, {thrust.liftOff().position, thrust.liftOff().velocity},
+                                     plan.target_com.z(), cfg.polarOrigin(), u, cfg.gravity);
 }
 
 TEST(Planner, TheFlightClearsAnEdgeOrIsRefusedNamingIt) {
-  // Onto a 0.4 m box whose edge lies 0.55 m ahead, 1 m away.
+  // Onto a 0.4 m box whose edge lies 0.6 m ahead, 1 m away.
   PlannerConfig cfg = go1Config(true);
   JumpTarget up;
   up.displacement = {1.0, 0.0, 0.4};
   const PlannedJump flat = planJump(up, cfg);
   ASSERT_TRUE(flat.feasible) << flat.reason;
-  const TerrainEdges::Edge edge{0.55, 0.4};
+  const TerrainEdges::Edge edge{0.6, 0.4, true};
   // Planned as if flat, the tucked body passes the edge's clearance too low.
   cfg.terrain.edges = {edge};
   EXPECT_LT(leastEdgeClearance(flat, cfg, edge), cfg.terrain.clearance_m);
   const PlannedJump clear = planJump(up, cfg);
-  ASSERT_TRUE(clear.feasible) << clear.reason;
+  ASSERT_TRUE(clear.feasible) << planLimitName(clear.limit) << ": " << clear.reason;
   EXPECT_GE(leastEdgeClearance(clear, cfg, edge), cfg.terrain.clearance_m - 2e-3);
   EXPECT_GT(clear.action.velocity_elevation_rad, flat.action.velocity_elevation_rad);
   EXPECT_GT(clear.apex.z(), flat.apex.z());
   EXPECT_NEAR((flownLanding(clear, cfg) - clear.target_com).norm(), 0.0, 1e-6);
   // A wall 1.5 m high on the way cannot be cleared: refused, naming it.
-  cfg.terrain.edges = {{0.55, 1.5}};
+  cfg.terrain.edges = {{0.55, 1.5, true}};
   const PlannedJump wall = planJump(up, cfg);
   EXPECT_FALSE(wall.feasible);
   EXPECT_EQ(wall.limit, PlanLimit::kTerrain);
   EXPECT_NE(wall.reason.find("edge 0.55 m along the jump (top 1.5 m)"), std::string::npos) << wall.reason;
   // An edge the body never spans in flight (behind the start) changes nothing.
-  cfg.terrain.edges = {{-0.6, 0.4}};
+  cfg.terrain.edges = {{-0.6, 0.4, false}};
   const PlannedJump behind = planJump(up, cfg);
   ASSERT_TRUE(behind.feasible);
   EXPECT_EQ(behind.action.velocity_elevation_rad, flat.action.velocity_elevation_rad);
@@ -268,7 +259,7 @@ TEST(Planner, AThrustThatWouldCarryTheHipsOverANearEdgeIsRefused) {
   PlannerConfig cfg = go1Config(true);
   JumpTarget up;
   up.displacement = {0.75, 0.0, 0.3};
-  cfg.terrain.edges = {{0.225, 0.3}};
+  cfg.terrain.edges = {{0.225, 0.3, true}};
   const PlannedJump near = planJump(up, cfg);
   EXPECT_FALSE(near.feasible);
   EXPECT_EQ(near.limit, PlanLimit::kTerrain);
@@ -279,9 +270,9 @@ TEST(Planner, AThrustThatWouldCarryTheHipsOverANearEdgeIsRefused) {
   const PlannedJump flat = planJump(up, cfg);
   ASSERT_TRUE(flat.feasible) << flat.reason;
   const ThrustPlan thrust(flat.action, flat.azimuth_rad, cfg.start_com, cfg.polarOrigin());
-  cfg.terrain.edges = {{0.225, 0.3}};
+  cfg.terrain.edges = {{0.225, 0.3, true}};
   EXPECT_FALSE(thrustEdgePass(cfg.terrain, cfg.polarOrigin(), thrust, flat.target_com).clears());
-  cfg.terrain.edges = {{1.225, 0.3}};
+  cfg.terrain.edges = {{1.225, 0.3, true}};
   EXPECT_TRUE(thrustEdgePass(cfg.terrain, cfg.polarOrigin(), thrust, flat.target_com).clears());
 }
 

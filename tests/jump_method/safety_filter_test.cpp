@@ -9,6 +9,7 @@
 #include <string>
 
 #include "method/planner.h"
+#include "edge_reference.h"
 
 namespace pronk::jump {
 namespace {
@@ -34,18 +35,11 @@ TEST(SafetyCheck, RejectsAFlightThatStrikesAnEdgeOnTheWay) {
   // low for the tucked legs (0.17 m below the CoM), a 0.6 s one high enough.
   const Eigen::Vector3d target(1.0, 0.0, 0.4 + 0.31);
   SafetyCheck check;
-  check.terrain.edges = {{0.5, 0.4}};
+  check.terrain.edges = {{0.5, 0.4, true}};
   const TerrainEdges::Edge& edge = check.terrain.edges[0];
-  auto lowest = [&](const LiftOffVelocity& v) {  // the body's lowest point over the edge, by sampling
-    double least = INFINITY;
-    const BallisticFlight flight(FlightState{kLiftOff, v.velocity}, standardGravity());
-    for (double t = 0.0; t <= v.flight_time; t += 1e-4) {
-      const Eigen::Vector3d c = flight.state(t).position;
-      if (std::abs(c.x() - edge.distance) > check.terrain.body_reach_m) continue;
-      least = std::min(least, c.z() - (t < check.terrain.tuck_time_s ? check.terrain.hip_depth_m
-                                                                     : check.terrain.tuck_depth_m));
-    }
-    return least;
+  auto lowest = [&](const LiftOffVelocity& v) {  // the body's least clearance over the edge (edge_reference.h)
+    return edge.top + reference::leastClearanceOver(check.terrain, edge, FlightState{kLiftOff, v.velocity}, target.z(),
+                                                  Eigen::Vector3d::Zero(), Eigen::Vector2d::UnitX(), standardGravity());
   };
   const LiftOffVelocity flat = LiftOffHyperbola(kLiftOff, target).atFlightTime(0.3);
   const LiftOffVelocity high = LiftOffHyperbola(kLiftOff, target).atFlightTime(0.6);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "pronk/error.h"
 #include "pronk/training.h"
 
 namespace {
@@ -94,6 +95,43 @@ TEST(ValidationSet, IsFixedForItsSeedAndApartFromTheTrainingDraws) {
   EXPECT_EQ(same, 0);
   t.validation_seed = 2;
   EXPECT_NE(pronk::validationCases(t)[0].target.x, a[0].target.x);
+}
+
+TEST(TargetSampler, PlacesEdgesAndDrawsAgainWhatHasNoRoom) {
+  // A room check that takes only targets at least 0.7 m away: every case gets
+  // its edge's place in 0 .. 1, and none nearer passes.
+  pronk::TrainingSpec t = omniRegion();
+  pronk::TargetSampler sampler(t);
+  int asked = 0;
+  sampler.placeEdges([&asked](const pronk::EpisodeCase& c) {
+    ++asked;
+    return std::hypot(c.target.x, c.target.y) >= 0.7;
+  });
+  pronk::Rng rng(5);
+  const std::vector<pronk::EpisodeCase> cases = sampler.cases(rng, 500, "c");
+  ASSERT_EQ(cases.size(), 500u);
+  for (const pronk::EpisodeCase& c : cases) {
+    EXPECT_GE(std::hypot(c.target.x, c.target.y), 0.7) << c.label;
+    ASSERT_EQ(c.assignments.size(), 1u);
+    EXPECT_EQ(c.assignments[0].first, "terrain.edge");
+    EXPECT_GE(c.assignments[0].second, 0.0);
+    EXPECT_LT(c.assignments[0].second, 1.0);
+  }
+  EXPECT_GT(asked, 500);  // some were drawn again
+  // The same seed, the same cases; the validation set draws its edges too.
+  pronk::Rng again(5);
+  const std::vector<pronk::EpisodeCase> twice = sampler.cases(again, 500, "c");
+  for (size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(cases[i].target.x, twice[i].target.x);
+    EXPECT_EQ(cases[i].assignments, twice[i].assignments);
+  }
+  t.validation_count = 20;
+  for (const pronk::EpisodeCase& c : pronk::validationCases(t, sampler)) EXPECT_EQ(c.assignments.size(), 1u);
+  // A region with no room at all is an error, not a hang.
+  pronk::TargetSampler none(t);
+  none.placeEdges([](const pronk::EpisodeCase&) { return false; });
+  pronk::Rng r(1);
+  EXPECT_THROW(none.cases(r, 1, "c"), pronk::InputError);
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ const std::string kTinyTraining = here("scenarios/go1_tiny_train.xml");
 const std::string kTinyAimTraining = here("scenarios/go1_tiny_aim_train.xml");
 const std::string kTinyAimMirrorTraining = here("scenarios/go1_tiny_aim_mirror_train.xml");
 const std::string kTinyOversampleTraining = here("scenarios/go1_tiny_oversample_train.xml");
+const std::string kTinyEdgesTraining = here("scenarios/go1_tiny_edges_train.xml");
 
 std::string outDir(const std::string& name) {
   const std::string dir = std::string(PRONK_TRAINING_OUT_DIR) + "/" + name;
@@ -247,6 +248,32 @@ TEST(PronkTrain, AimCorrectionWithHindsightResumesBitForBit) {
   EXPECT_TRUE(r.status == 0 || r.status == 4) << r.output;
   const json results = readJson(run + "/results.json")["jumps"];
   ASSERT_TRUE(results.is_array() && results.size() == 1u) << r.output;
+}
+
+// Training on real boxes: each case places its box's edge, and a target
+// without room for one between the stances is drawn again, so that no case of
+// the batch or the validation set fails to be set up.
+TEST(PronkTrain, OnRealBoxesEveryCaseHasRoomForItsEdge) {
+  const std::string dir = outDir("train_edges");
+  const Outcome o = pronk("train " + kTinyEdgesTraining + " --jobs 2 --out " + dir + "/p.json");
+  ASSERT_EQ(o.status, 0) << o.output;
+  std::istringstream log(readText(dir + "/train_log.csv"));
+  std::string header, row, last;
+  std::getline(log, header);
+  while (std::getline(log, row)) last = row;
+  auto column = [](const std::string& line, const std::string& name, const std::string& names) {
+    std::vector<std::string> keys, values;
+    std::string cell;
+    for (std::istringstream k(names); std::getline(k, cell, ',');) keys.push_back(cell);
+    for (std::istringstream v(line); std::getline(v, cell, ',');) values.push_back(cell);
+    const auto at = std::find(keys.begin(), keys.end(), name);
+    return at == keys.end() || values.size() <= static_cast<size_t>(at - keys.begin())
+               ? std::string("?")
+               : values[at - keys.begin()];
+  };
+  EXPECT_EQ(column(last, "batch_jumps", header), "8") << last;
+  EXPECT_EQ(column(last, "batch_setup_errors", header), "0") << last;
+  EXPECT_EQ(column(last, "validation_jumps", header), "3") << last;
 }
 
 // Mirror guidance: each hindsight pair enters with its mirror image (y, yaw and

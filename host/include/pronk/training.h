@@ -36,23 +36,33 @@ namespace pronk {
 // roll and pitch 0, and z = 0 for the region's flat_share of them. A target
 // with a height (z != 0) lies at least kLeastStepDistance from the start
 // horizontally (its step platform's edge goes between): closer ones are drawn
-// again.
+// again. With placeEdges (step platforms with edges, <terrain
+// step_platforms="true">) each case also draws its edge's place in the room
+// between the stances (terrain.edge, uniform in 0 .. 1), and a case that
+// cannot be set up (no room for an edge) is drawn again.
 class TargetSampler {
  public:
   static constexpr double kLeastStepDistance = 0.15;  // m
+  static constexpr int kMaxDraws = 10000;             // per target, before the region is called too narrow
   explicit TargetSampler(const TrainingSpec& spec);
+  // `fits`: whether a case can be set up (applyCase with the robot's footprint).
+  void placeEdges(std::function<bool(const EpisodeCase&)> fits);
   TargetSpec draw(Rng& rng) const;
   // n targets, named "<prefix> #k".
   std::vector<EpisodeCase> cases(Rng& rng, int n, const std::string& prefix) const;
 
  private:
   TrainingSpec spec_;
+  std::function<bool(const EpisodeCase&)> fits_;  // set: edges are placed
 };
 
 // The validation set: validation_count targets of the region from their own
 // stream (seeded by validation_seed, apart from the training stream by
 // construction), the same for every iteration and every run of the file.
-std::vector<EpisodeCase> validationCases(const TrainingSpec& spec);
+std::vector<EpisodeCase> validationCases(const TrainingSpec& spec, const TargetSampler& sampler);
+inline std::vector<EpisodeCase> validationCases(const TrainingSpec& spec) {
+  return validationCases(spec, TargetSampler(spec));
+}
 
 // What the command line changes of the file's <training>, and where to write.
 struct TrainingRunOptions {

@@ -15,10 +15,24 @@ namespace pronk {
 
 struct RolloutPool::Worker {
   std::unique_ptr<World> world;
-  // The case assignments the world was built with: applyCase changes nothing
-  // else of the robot or the simulation, only the terrain and the start pose.
+  // The case assignments the world was built with, but terrain.edge: applyCase
+  // changes nothing else of the robot or the simulation, only the terrain and
+  // the start pose, which a reused world takes at its restart.
   std::vector<std::pair<std::string, double>> assignments;
 };
+
+namespace {
+
+// What a case's world is built from: its assignments but the terrain's.
+std::vector<std::pair<std::string, double>> worldAssignments(const EpisodeCase& episode) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& a : episode.assignments) {
+    if (a.first != "terrain.edge") out.push_back(a);
+  }
+  return out;
+}
+
+}  // namespace
 
 RolloutPool::RolloutPool(RolloutSetup setup, RolloutOptions options)
     : setup_(std::move(setup)), options_(options) {
@@ -50,9 +64,9 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
     return record;
   }
   Terrain terrain(s.ground, s.ground_height, s.terrain);
-  if (!options_.reuse_worlds || !worker.world || worker.assignments != episode.assignments) {
+  if (!options_.reuse_worlds || !worker.world || worker.assignments != worldAssignments(episode)) {
     worker.world = std::make_unique<World>(*robot_, s.platform, s.sim, terrain);
-    worker.assignments = episode.assignments;
+    worker.assignments = worldAssignments(episode);
     ++worlds_built_;
   } else {
     worker.world->restart(s.platform.base_position, s.platform.base_yaw, std::move(terrain));

@@ -1,6 +1,8 @@
 // The targets training draws: uniform in the <training> region, and the fixed
 // validation set (pronk/training.h).
 #include <cmath>
+#include <functional>
+#include <utility>
 
 #include "pronk/error.h"
 #include "pronk/training.h"
@@ -16,8 +18,10 @@ double uniform(Rng& rng, const TrainingRange& range) { return range.min + (range
 
 TargetSampler::TargetSampler(const TrainingSpec& spec) : spec_(spec) {}
 
+void TargetSampler::placeEdges(std::function<bool(const EpisodeCase&)> fits) { fits_ = std::move(fits); }
+
 TargetSpec TargetSampler::draw(Rng& rng) const {
-  for (int attempt = 0; attempt < 10000; ++attempt) {
+  for (int attempt = 0; attempt < kMaxDraws; ++attempt) {
     TargetSpec t;
     t.x = uniform(rng, spec_.x);
     t.y = uniform(rng, spec_.y);
@@ -40,16 +44,26 @@ std::vector<EpisodeCase> TargetSampler::cases(Rng& rng, int n, const std::string
   for (int i = 0; i < n; ++i) {
     EpisodeCase c;
     c.label = prefix + " #" + std::to_string(i);
-    c.target = draw(rng);
-    c.target.name = c.label;
+    for (int attempt = 0;; ++attempt) {
+      if (attempt == kMaxDraws) {
+        throw InputError(spec_.region_where, "<region>: no target of it leaves room for a step platform's edge "
+                                             "between the two stances in " + std::to_string(kMaxDraws) +
+                                             " draws; widen x or y");
+      }
+      c.target = draw(rng);
+      c.target.name = c.label;
+      if (!fits_) break;
+      c.assignments = {{"terrain.edge", rng.uniform()}};
+      if (fits_(c)) break;
+    }
     out.push_back(std::move(c));
   }
   return out;
 }
 
-std::vector<EpisodeCase> validationCases(const TrainingSpec& spec) {
+std::vector<EpisodeCase> validationCases(const TrainingSpec& spec, const TargetSampler& sampler) {
   Rng rng(training_streams::validationSeed(spec.validation_seed));
-  return TargetSampler(spec).cases(rng, spec.validation_count, "validation");
+  return sampler.cases(rng, spec.validation_count, "validation");
 }
 
 }  // namespace pronk

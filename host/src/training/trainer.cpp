@@ -225,8 +225,7 @@ class Trainer {
           const TrainingProgress& on_row, const std::atomic<bool>* stop)
       : scenario_(scenario), options_(options), on_row_(on_row), stop_(stop), spec_(specOf(scenario, options)),
         sampler_(spec_), target_rng_(training_streams::targetSeed(spec_.seed)),
-        noise_rng_(training_streams::noiseSeed(spec_.seed)), validation_(validationCases(spec_)),
-        hindsight_(spec_.hindsight_samples) {
+        noise_rng_(training_streams::noiseSeed(spec_.seed)), hindsight_(spec_.hindsight_samples) {
     RolloutSetup setup = environmentSetup(scenario, registry, {}, "");
     factory_name_ = setup.factory->name;
     for (const MetricSpec& m : setup.schema.metrics)
@@ -267,6 +266,19 @@ class Trainer {
     RolloutOptions rollout;
     rollout.threads = std::max(1, options.threads);
     pool_ = std::make_unique<RolloutPool>(std::move(setup), rollout);
+    if (scenario.step_platforms == StepPlatforms::edge) {
+      // Real boxes: each case places its edge, and a target with no room for
+      // one between the stances is drawn again.
+      sampler_.placeEdges([this](const EpisodeCase& c) {
+        try {
+          applyCase(scenario_, c, pool_->footprint());
+          return true;
+        } catch (const InputError&) {
+          return false;
+        }
+      });
+    }
+    validation_ = validationCases(spec_, sampler_);
   }
 
   TrainingOutcome run() {

@@ -172,6 +172,7 @@ void LandingPhase::compute(const pronk_robot_state& s, const JumpPlan& plan, dou
   const double a = smoothstep(elapsed / kLandingRamp);
   const double kp = kp_flight + a * (drive_.hold().kp - kp_flight);
   reference(s, plan, elapsed);
+  clearance_.apply(s, plan);
   if (!touchdown_com_) {  // no flight before (an abandoned jump): plain stance
     int down = 0;
     for (int f = 0; f < feet; ++f) down += s.foot_in_contact[f] ? 1 : 0;

@@ -1,6 +1,7 @@
 // The landing, from touchdown (any foot in contact with the CoM no longer
 // rising): joint PD towards a level trunk at the stance height over the feet (IK
-// for the feet in contact, the stance under a level trunk for the others), Kp
+// for the feet in contact, the stance under a level trunk for the others, kept
+// clear of the terrain as in flight), Kp
 // back from the flight's to the stance's over kLandingRamp, and a body wrench
 // spread over the feet in contact, over all of them once every foot has touched
 // down: a critically damped, friction-limited stop of the CoM where the landing
@@ -17,6 +18,7 @@
 #include "control/jump_plan.h"
 #include "control/leg_drive.h"
 #include "control/param_reader.h"
+#include "control/terrain_clearance.h"
 #include "pronk/plugin_abi.h"
 
 namespace pronk::guided_jump {
@@ -50,7 +52,7 @@ class LandingPhase {
   // the CoM there, and the ballistic prior aims short by it.
   static Eigen::Vector2d landingStop(const LandingSettings& landing, const Eigen::Vector3d& touchdown_velocity);
 
-  LandingPhase(LegDrive& drive, const LandingSettings& settings) : drive_(drive), settings_(settings) {}
+  LandingPhase(LegDrive& drive, const LandingSettings& settings) : drive_(drive), settings_(settings), clearance_(drive) {}
   const LandingSettings& settings() const { return settings_; }
 
   // Before a jump: no touchdown yet.
@@ -73,6 +75,7 @@ class LandingPhase {
 
   LegDrive& drive_;
   LandingSettings settings_;
+  TerrainClearance clearance_;                 // the feet still in the air, as in flight
   bool all_down_seen_ = false;                 // every foot has touched down
   std::optional<Eigen::Vector3d> touchdown_com_;  // the stop's goal: where the CoM comes to rest, its touchdown height
   double touchdown_sink_ = 0, touchdown_sink_rate_ = 0;  // CoM below its landing height, and its rate, at touchdown

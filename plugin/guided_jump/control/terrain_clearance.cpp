@@ -74,19 +74,45 @@ Eigen::Vector3d TerrainClearance::footInTrunk(int f, const Eigen::Vector3d& q) c
 double TerrainClearance::apply(const pronk_robot_state& s, const JumpPlan& plan) {
   const double landing_surface = plan.origin.z() + plan.landing_height;
   const Eigen::Matrix3d R = rotationOf(s);
+  // Ahead: the trunk's horizontal travel (none for a jump in place).
+  const Eigen::Vector2d travel(s.com_velocity[0], s.com_velocity[1]);
+  const int swings = travel.norm() > kMinTravel ? kSwingSteps : 0;
+  const Eigen::Vector3d ahead = swings > 0 ? Eigen::Vector3d(travel.x(), travel.y(), 0.0).normalized() : Eigen::Vector3d::Zero();
   double raised = 0.0;
   for (int f = 0; f < drive_.footCount(); ++f) {
     if (s.foot_in_contact[f]) continue;
     Eigen::Vector3d q = drive_.q_ref().segment<3>(3 * f);
-    double lift = 0.0;
+    double moved = 0.0;
     for (int pass = 0; pass < kPasses; ++pass) {
       const double dip = shortfall(s, R, f, q, landing_surface);
       if (!(dip > 1e-4)) break;
-      q = drive_.legIk(f, footInTrunk(f, q) + R.transpose() * Eigen::Vector3d(0, 0, dip));
-      lift += dip;
+      // The foot raised by the shortfall (a step up ahead), or swung ahead along
+      // the travel (the box being left: a trailing knee reaches behind its hip,
+      // and its reach, not its height, is what meets the edge), or both: the
+      // smallest move that clears, else the one that leaves the least shortfall.
+      const Eigen::Vector3d foot = footInTrunk(f, q);
+      Eigen::Vector3d best_q = q;
+      double best_dip = dip, best_move = 0.0;
+      for (int k = 0; k <= swings; ++k) {
+        for (const double up : {0.0, dip}) {
+          if (k == 0 && up == 0.0) continue;
+          const Eigen::Vector3d move = ahead * (kSwingStep * k) + Eigen::Vector3d(0, 0, up);
+          const Eigen::Vector3d q_try = drive_.legIk(f, foot + R.transpose() * move);
+          const double left = std::max(shortfall(s, R, f, q_try, landing_surface), 0.0);
+          const bool better = left < best_dip - 1e-6 || (left <= 1e-4 && best_dip <= 1e-4 && move.norm() < best_move);
+          if (better) {
+            best_q = q_try;
+            best_dip = left;
+            best_move = move.norm();
+          }
+        }
+      }
+      if (best_q == q) break;  // nothing helps: keep the reference
+      q = best_q;
+      moved += best_move;
     }
     drive_.q_ref().segment<3>(3 * f) = q;
-    raised = std::max(raised, lift);
+    raised = std::max(raised, moved);
   }
   return raised;
 }

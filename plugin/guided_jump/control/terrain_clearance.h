@@ -5,8 +5,10 @@
 // ballistic flight carries them within kLookahead: a surface higher than the
 // one the jump lands on (the box being left) or higher than the one under the
 // point now (the edge of a box ahead). A leg that would dip into one is
-// shortened: its foot raised, in the world's vertical, by the deepest
-// shortfall, and solved again by IK. Over flat ground there is no obstacle,
+// moved: its foot raised, in the world's vertical, by the deepest
+// shortfall, or swung ahead along the trunk's travel (a trailing knee that
+// reaches back over the box being left), whichever clears with the smallest
+// move, and solved again by IK. Over flat ground there is no obstacle,
 // and without the host's terrain (ABI < 1.6) it does nothing.
 #pragma once
 
@@ -21,12 +23,15 @@ class TerrainClearance {
   static constexpr double kClearance = 0.03;  // m above an obstacle
   static constexpr double kLookahead = 0.1;   // s of the trunk's horizontal travel looked ahead
   static constexpr int kLookaheadSteps = 4;   // samples over it, the present included
-  static constexpr int kPasses = 3;           // raise-and-solve rounds per leg
+  static constexpr int kPasses = 3;           // move-and-solve rounds per leg
+  static constexpr double kSwingStep = 0.03;  // m: a foot swung ahead moves in these steps
+  static constexpr int kSwingSteps = 5;       // up to 0.15 m ahead
+  static constexpr double kMinTravel = 0.05;  // m/s: slower, nothing is ahead
 
   explicit TerrainClearance(LegDrive& drive) : drive_(drive) {}
 
-  // Raises the reference of every leg out of contact that dips into the terrain
-  // (drive.q_ref()). Returns how far the deepest foot was raised, m (0: none).
+  // Moves the reference of every leg out of contact that dips into the terrain
+  // (drive.q_ref()). Returns the largest move of a foot, m (0: none).
   double apply(const pronk_robot_state& s, const JumpPlan& plan);
 
  private:

@@ -16,6 +16,7 @@ namespace {
 constexpr uint32_t kDeclSize = sizeof(pronk_param_decl);
 constexpr int32_t kActionSize = jump::kActionSize;
 constexpr double kRestSpeed = 0.05;  // m/s: the CoM is at rest below this
+constexpr double kHipRadiusPerLeg = 0.108;  // the hip motor's radius per m of leg (thigh + calf)
 
 // The paper's Go1 workspace band of the trunk height (m), scaled like the ranges.
 constexpr double kGo1WorkspaceZ[2] = {0.15, 0.40};
@@ -179,7 +180,7 @@ void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_r
   has_task_ = true;
 }
 
-jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards) const {
+jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards, double turn) const {
   jump::TerrainEdges terrain;
   constexpr double kStep = 0.01;         // m between samples of the surface
   constexpr double kBeyond = 0.3;        // m sampled past the target
@@ -194,28 +195,26 @@ jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards)
     if (!top) return {};  // an older host, or nothing under the line: no edges known
     const double height = top->height - start_.origin.z();
     if (before && std::abs(height - *before) > kEdgeHeight) {
-      terrain.edges.push_back({s - 0.5 * kStep, std::max(height, *before)});
+      terrain.edges.push_back({s - 0.5 * kStep, std::max(height, *before), height > *before});
     }
     before = height;
   }
+  terrain.turn_rad = turn;
+  terrain.tuck_time_s = FlightPhase::kBlendTime;
   if (terrain.edges.empty() || !legs_) return terrain;
-  // The hips' and the tucked legs' lowest points and the legs' horizontal reach about the CoM.
+  // The hips, and the knees and feet at the flight's tuck, about the CoM. The
+  // hips are the motors' balls, about a ninth of a leg across (the Go1's 0.046 m
+  // on its 0.426 m leg); the knees and feet the foot's.
   const std::array<double, 3>& tuck = settings_.jump.flight.tuck;
   const Eigen::Vector3d q_tuck(tuck[0], tuck[1], tuck[2]);
-  const double radius = settings_.reward.foot_radius;
-  double depth = 0.0, hip_depth = 0.0, reach = 0.0;
+  const double leg_radius = settings_.reward.foot_radius;
+  const double hip_radius = kHipRadiusPerLeg * jump::meanLegLength(*legs_);
+  terrain.body.clear();
   for (const jump::LegGeometry& leg : *legs_) {
-    const Eigen::Vector3d foot = jump::footPosition(leg, q_tuck) + com_to_trunk_;
-    const Eigen::Vector3d knee = jump::kneePosition(leg, q_tuck) + com_to_trunk_;
-    const Eigen::Vector3d hip = leg.hipPosition() + com_to_trunk_;
-    depth = std::max(depth, radius - foot.z());
-    hip_depth = std::max({hip_depth, radius - knee.z(), radius - hip.z()});
-    reach = std::max(reach, std::abs(hip.x()) + radius);
+    terrain.body.push_back({leg.hipPosition() + com_to_trunk_, hip_radius, false});
+    terrain.body.push_back({jump::kneePosition(leg, q_tuck) + com_to_trunk_, leg_radius, false});
+    terrain.body.push_back({jump::footPosition(leg, q_tuck) + com_to_trunk_, leg_radius, true});
   }
-  terrain.tuck_depth_m = depth;
-  terrain.hip_depth_m = hip_depth;
-  terrain.body_reach_m = reach;
-  terrain.tuck_time_s = FlightPhase::kBlendTime;
   return terrain;
 }
 
@@ -231,8 +230,8 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
   jump::JumpTarget target;
   target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
-  config.terrain = terrainEdges(target.displacement.head<2>());
   target.yaw_rad = observation[3];
+  config.terrain = terrainEdges(target.displacement.head<2>(), target.yaw_rad);
   // Aimed short by where the controller's landing will stop the CoM.
   const LandingSettings& landing = settings_.jump.landing;
   const jump::PlannedJump plan = jump::planPriorJump(
@@ -294,7 +293,7 @@ void JumpEnvironment::act(const double* raw_action) {
   ballistic.gravity = gravity_;
   // The edges on the way: refused where the flight's model strikes one (the
   // planner keeps its clearance margin; the filter refuses only a strike).
-  ballistic.terrain = terrainEdges(target.head<2>());
+  ballistic.terrain = terrainEdges(target.head<2>(), task_[3]);
   ballistic.terrain.clearance_m = 0.0;
   const std::optional<jump::LegWorkspace> ws = workspace();
   const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, ws);

@@ -100,9 +100,10 @@ class JumpEnvironment {
 
   // The terrain's edges under the line from the start towards `towards` (start
   // frame, horizontal) and 0.3 m beyond it, from the host's terrain (ABI 1.6;
-  // none from an older host), with the hips' and the tucked legs' depth and
-  // reach about the CoM: what the planner clears and the safety filter checks.
-  jump::TerrainEdges terrainEdges(const Eigen::Vector2d& towards) const;
+  // none from an older host), with the hips and the tucked legs about the CoM
+  // and the trunk's turn `turn` (rad) over the flight: what the planner clears
+  // and the safety filter checks.
+  jump::TerrainEdges terrainEdges(const Eigen::Vector2d& towards, double turn) const;
 
   jump::BodyState bodyState(const pronk_robot_state& s, const StartFrame& S) const;
 

@@ -18,31 +18,46 @@
 namespace pronk::jump {
 
 struct TerrainEdges {
-  // Where the surface's height changes along the jump line, and the higher
-  // side's height.
+  // Where the surface's height changes along the jump line, the higher side's
+  // height, and on which side of the edge it lies.
   struct Edge {
     double distance = 0.0;  // m
     double top = 0.0;       // m
+    bool rising = false;    // the higher side lies ahead (a step up); else behind (a drop)
   };
   std::vector<Edge> edges;  // empty: flat, nothing to clear
-  // While the CoM is within body_reach_m of an edge (horizontally, along the
-  // jump), the body's lowest point passes clearance_m above it: the hips and
-  // tucked knees, hip_depth_m below the CoM, from lift-off on; the tucked feet,
-  // tuck_depth_m below it, from tuck_time_s after lift-off (the tuck done).
-  double body_reach_m = 0.21;
-  double hip_depth_m = 0.06;
-  double tuck_depth_m = 0.17;
+  // The body's points that must pass clearance_m above the higher side of an
+  // edge while any of them is over it, about the CoM in the trunk's frame (x
+  // ahead, z up), each a ball of its radius: the hips and the knees at the
+  // flight's tuck from lift-off to touchdown, the tucked feet from tuck_time_s
+  // after lift-off (the tuck done). The trunk turns from the start's yaw to
+  // turn_rad over the flight. The defaults are the Go1's.
+  struct BodyPoint {
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();  // m
+    double radius = 0.0;                           // m
+    bool tucked = false;                           // from tuck_time_s on
+  };
+  std::vector<BodyPoint> body = {
+      {{0.19, 0.13, 0.0}, 0.046, false},   {{0.19, -0.13, -0.0}, 0.046, false},
+      {{-0.19, 0.13, 0.0}, 0.046, false},  {{-0.19, -0.13, -0.0}, 0.046, false},
+      {{-0.02, 0.13, -0.05}, 0.02, false},  {{-0.02, -0.13, -0.05}, 0.02, false},
+      {{-0.40, 0.13, -0.05}, 0.02, false},  {{-0.40, -0.13, -0.05}, 0.02, false},
+      {{0.19, 0.13, -0.15}, 0.02, true},    {{0.19, -0.13, -0.15}, 0.02, true},
+      {{-0.19, 0.13, -0.15}, 0.02, true},   {{-0.19, -0.13, -0.15}, 0.02, true}};
   double tuck_time_s = 0.1;
+  double turn_rad = 0.0;
   double clearance_m = 0.03;
 
   // Throws std::invalid_argument naming the field on a bad value.
   void check() const;
 };
 
-// How far (m) the body's lowest point passes below an edge's clearance on the
-// flight from lift-off (c_e, v) down to the height of c_tg, whose horizontal
-// direction from `origin` is the jump's (> 0: too low; -inf: no edge spanned),
-// and which edge is the worst.
+// How far (m) the body's lowest point over the higher side of an edge passes
+// below its clearance on the flight from lift-off (c_e, v) down to the height of
+// c_tg, whose horizontal direction from `origin` is the jump's (> 0: too low;
+// -inf: no point over an edge), and which edge is the worst. Each point's path
+// is taken in 60 spans, straight along the jump within each (exact without a
+// turn), its lowest point over an edge found exactly.
 struct EdgePass {
   double shortfall = -std::numeric_limits<double>::infinity();
   std::optional<TerrainEdges::Edge> edge;
@@ -51,10 +66,9 @@ struct EdgePass {
 EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const Eigen::Vector3d& c_e,
                   const Eigen::Vector3d& v, const Eigen::Vector3d& c_tg, const Eigen::Vector3d& gravity);
 
-// The same on the thrust, before lift-off: while the CoM on the thrust's path
-// is within body_reach_m of an edge, the hips (hip_depth_m below it) must be
-// clearance_m above it: a push that carries the trunk's front over a box's edge
-// below its top drives a hip into its face. 40 samples of the path.
+// The same on the thrust, before lift-off, for the points not tucked (at the start's yaw): a
+// push that carries the trunk's front over a box's edge below its top drives a
+// hip into its face. 40 samples of the path.
 EdgePass thrustEdgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const ThrustPlan& thrust,
                         const Eigen::Vector3d& c_tg);
 

@@ -1,0 +1,136 @@
+// The edge model (method/edge_clearance.h) on its own inputs: which of the
+// body's points meet which side of an edge, held to the dense reference of
+// edge_reference.h.
+#include "method/edge_clearance.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "edge_reference.h"
+#include "method/ballistics.h"
+
+namespace pronk::jump {
+namespace {
+
+const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
+
+// A lift-off from (0.1, 0, 0.36) that lands its CoM at x_land on the surface
+// `landing` below the start (the CoM 0.31 above it), after flight_time s.
+FlightState liftOffTo(double x_land, double landing, double flight_time) {
+  const Eigen::Vector3d c(0.1, 0.0, 0.36);
+  const double z_land = landing + 0.31;
+  return {c, Eigen::Vector3d((x_land - c.x()) / flight_time, 0.0,
+                             (z_land - c.z()) / flight_time + 0.5 * 9.81 * flight_time)};
+}
+
+double shortfall(const TerrainEdges& terrain, const FlightState& lo, const Eigen::Vector3d& target) {
+  return edgePass(terrain, Eigen::Vector3d::Zero(), lo.position, lo.velocity, target, kGravity).shortfall;
+}
+
+TEST(EdgeClearance, MatchesTheDenseReferenceOnADropAndAStep) {
+  for (const auto& [edge, landing] : {std::pair{TerrainEdges::Edge{0.45, 0.0, false}, -0.3},
+                                      std::pair{TerrainEdges::Edge{0.5, 0.3, true}, 0.3}}) {
+    for (const double flight_time : {0.3, 0.4, 0.5}) {
+      TerrainEdges terrain;
+      terrain.edges = {edge};
+      const double x_land = edge.rising ? 0.9 : 1.0;
+      const FlightState lo = liftOffTo(x_land, landing, flight_time);
+      const Eigen::Vector3d target(x_land, 0.0, landing + 0.31);
+      const double reference = reference::leastClearanceOver(terrain, edge, lo, target.z(), Eigen::Vector3d::Zero(),
+                                                           Eigen::Vector2d::UnitX(), kGravity);
+      // edgePass samples 60 points of the flight; the reference every 0.1 ms.
+      EXPECT_NEAR(shortfall(terrain, lo, target), terrain.clearance_m - reference, 0.01)
+          << "edge " << edge.distance << " flight " << flight_time;
+    }
+  }
+}
+
+TEST(EdgeClearance, ATrailingKneeMustClearTheBoxBeingLeft) {
+  // Down 0.3 m from a box whose edge lies 0.45 m ahead to 0.9 m: a 0.4 s
+  // flight carries the tucked rear knees, 0.4 m behind the CoM, over the box's
+  // top below it; the hips alone would clear.
+  TerrainEdges terrain;
+  terrain.edges = {{0.45, 0.0, false}};
+  const FlightState lo = liftOffTo(0.9, -0.3, 0.4);
+  const Eigen::Vector3d target(0.9, 0.0, 0.01);
+  const EdgePass pass = edgePass(terrain, Eigen::Vector3d::Zero(), lo.position, lo.velocity, target, kGravity);
+  EXPECT_GT(pass.shortfall, 0.0);
+  ASSERT_TRUE(pass.edge);
+  EXPECT_EQ(pass.edge->distance, 0.45);
+  EXPECT_NE(edgeProblem(terrain, pass).find("the edge 0.45 m along the jump (top 0 m)"), std::string::npos);
+  TerrainEdges hips_only = terrain;
+  hips_only.body.erase(std::remove_if(hips_only.body.begin(), hips_only.body.end(),
+                                     [](const TerrainEdges::BodyPoint& p) { return p.at.x() < -0.3; }),
+                      hips_only.body.end());
+  EXPECT_LT(shortfall(hips_only, lo, target), 0.0);
+  // Landing 0.2 m further, they are past it in time.
+  EXPECT_LT(shortfall(terrain, liftOffTo(1.1, -0.3, 0.4), Eigen::Vector3d(1.1, 0.0, 0.01)), 0.0);
+}
+
+TEST(EdgeClearance, OnlyThePointsOverTheHigherSideCount) {
+  // A step 0.3 m up, 0.5 m ahead: below its top, a point behind the edge is
+  // free, one ahead of it (or within the clearance of its face) is not.
+  TerrainEdges terrain;
+  terrain.edges = {{0.5, 0.3, true}};
+  terrain.body = {{{0.0, 0.0, 0.0}, 0.0, false}};
+  const Eigen::Vector3d target(2.0, 0.0, 0.31);
+  const FlightState still{{0.1, 0.0, 0.2}, Eigen::Vector3d(0.0, 0.0, 0.0)};
+  // The CoM at 0.1 m (behind the edge, 0.1 m below the top): nothing over the top.
+  EXPECT_FALSE(edgePass(terrain, Eigen::Vector3d::Zero(), still.position, Eigen::Vector3d(1e-3, 0, 0), target, kGravity)
+                   .shortfall > 0.0);
+  // The point reaching 0.45 m ahead of the CoM: 0.05 m short of the face, within
+  // the clearance plus its 0.03 m radius: it counts.
+  terrain.body = {{{0.42, 0.0, 0.0}, 0.03, false}};
+  const double reach = edgePass(terrain, Eigen::Vector3d::Zero(), still.position, Eigen::Vector3d(1e-3, 0, 0), target,
+                                kGravity).shortfall;
+  EXPECT_NEAR(reach, 0.3 + 0.03 - (0.2 - 0.03), 1e-9);
+  // A drop behind instead: the same point ahead is over the lower side.
+  terrain.edges = {{0.5, 0.3, false}};
+  terrain.body = {{{0.45, 0.0, 0.0}, 0.0, false}};
+  EXPECT_FALSE(edgePass(terrain, Eigen::Vector3d::Zero(), still.position, Eigen::Vector3d(1e-3, 0, 0), target, kGravity)
+                   .shortfall > 0.0);
+}
+
+TEST(EdgeClearance, TheTrunkTurnsItsPointsOverTheFlight) {
+  // One point 0.4 m behind the CoM, a drop 0.45 m ahead of a 0.9 m jump.
+  // Without a turn it trails the CoM over the edge too low; turned a quarter
+  // over the flight it points sideways by the time the CoM is past the edge.
+  TerrainEdges terrain;
+  terrain.edges = {{0.45, 0.0, false}};
+  terrain.body = {{{-0.4, 0.0, -0.05}, 0.0, true}};
+  terrain.tuck_time_s = 0.0;
+  const FlightState lo = liftOffTo(0.9, -0.3, 0.4);
+  const Eigen::Vector3d target(0.9, 0.0, 0.01);
+  const double straight = shortfall(terrain, lo, target);
+  terrain.turn_rad = M_PI / 2.0;
+  const double turned = shortfall(terrain, lo, target);
+  EXPECT_GT(straight, 0.0);
+  EXPECT_LT(turned, 0.0);
+  EXPECT_NEAR(turned, terrain.clearance_m - reference::leastClearanceOver(terrain, terrain.edges[0], lo, target.z(),
+                                                                         Eigen::Vector3d::Zero(),
+                                                                         Eigen::Vector2d::UnitX(), kGravity),
+              0.01);
+}
+
+TEST(EdgeClearance, CheckNamesABadField) {
+  TerrainEdges terrain;
+  terrain.body.push_back({{NAN, 0.0, 0.0}, 0.0, false});
+  EXPECT_THROW(terrain.check(), std::invalid_argument);
+  terrain = TerrainEdges{};
+  terrain.turn_rad = INFINITY;
+  EXPECT_THROW(terrain.check(), std::invalid_argument);
+  terrain = TerrainEdges{};
+  terrain.tuck_time_s = -1.0;
+  try {
+    terrain.check();
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("tuck_time_s"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace pronk::jump
