@@ -347,6 +347,41 @@ TEST_F(TerrainClearanceUnit, TheRearLegsStayAboveTheBoxBeingLeft) {
   EXPECT_EQ(d.q_ref().head<6>(), stance().head<6>());
 }
 
+TEST_F(TerrainClearanceUnit, ATrailingKneeIsSwungAheadOffTheBoxBeingLeft) {
+  // Tucked (the flight's 0, 1.37, -2.37), the Go1's rear knees reach 0.40 m
+  // behind the trunk, 4 cm below it; the trunk flies on at 1.2 m/s. The box
+  // being left ends at x = -0.35, its top 2 cm under the knees: raising the
+  // foot would fold the knee further back, so the foot swings ahead instead.
+  LegDrive d = drive(jump::go1Legs());
+  const JumpPlan p = plan(d, -0.3);
+  g_ground = -0.32;
+  g_boxes = {{-1.5, -0.35, 0.24}};
+  Eigen::VectorXd tuck(12);
+  for (int f = 0; f < 4; ++f) tuck.segment<3>(3 * f) = Eigen::Vector3d(0, 1.37, -2.37);
+  d.q_ref() = tuck;
+  pronk_robot_state s = robot_.state();
+  s.com_velocity[0] = 1.2;
+  TerrainClearance clearance(d);
+  EXPECT_GT(clearance.apply(s, p), 0.0);
+  const Eigen::Vector3d base(0, 0, 0.3);
+  for (const int rear : {2, 3}) {
+    const jump::LegGeometry& leg = (*d.legs())[rear];
+    const Eigen::Vector3d q = d.q_ref().segment<3>(3 * rear), q0 = tuck.segment<3>(3 * rear);
+    EXPECT_GT(jump::footPosition(leg, q).x(), jump::footPosition(leg, q0).x() + 0.02) << rear;
+    // Every point of the thigh and calf over the box is 3 cm above its top.
+    const Eigen::Vector3d hip = base + leg.hipPosition(), knee = base + jump::kneePosition(leg, q),
+                          foot = base + jump::footPosition(leg, q);
+    for (double a = 0.0; a <= 1.0; a += 0.05) {
+      for (const Eigen::Vector3d& point : {Eigen::Vector3d(hip + a * (knee - hip)), Eigen::Vector3d(knee + a * (foot - knee))}) {
+        if (point.x() <= -0.35) {
+          EXPECT_GE(point.z() - 0.24, TerrainClearance::kClearance - 2e-3) << rear << " " << a;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(d.q_ref().head<6>(), tuck.head<6>());  // the front legs, over the ground, stay
+}
+
 TEST_F(TerrainClearanceUnit, TheFrontLegsRiseBeforeTheEdgeAhead) {
   LegDrive d = drive(jump::go1Legs());
   const JumpPlan p = plan(d, 0.1);  // an up jump onto the box ahead
