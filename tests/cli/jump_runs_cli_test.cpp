@@ -851,6 +851,22 @@ TEST(JumpRuns, DcMotorKeepsEveryTorqueOnItsTorqueSpeedLine) {
   EXPECT_LT(dc["error_xy"].get<double>(), 0.05);
 }
 
+// An episode shorter than the jump (duration 0.6 s, the touchdown near 1 s)
+// is not cut off in the air: it lasts until the landing has its gains back,
+// 0.3 s after the planned touchdown, and the jump lands.
+TEST(JumpRuns, AFlightThatLandsAfterTheDurationIsNotCutOff) {
+  const std::string out = outDir("jump_short_duration");
+  const CommandRun r =
+      pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --param duration=0.6 --out " + out);
+  EXPECT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = results(out);
+  ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
+  EXPECT_EQ(j[0]["status"], "ok") << j[0].dump().substr(0, 600);
+  const double touchdown = j[0]["metrics"]["planned_touchdown_time"].get<double>();
+  EXPECT_GT(touchdown, 0.6);
+  EXPECT_NEAR(j[0]["simulated_s"].get<double>(), touchdown + 0.3, 2e-3);
+}
+
 TEST(JumpRuns, ParamFlagSetsAnEnvironmentParameter) {
   // The up-jump runs with the effort box (up.xml). With --param motor=dc its
   // calves would turn near their 20 rad/s no-load speed; the planner's lowest,

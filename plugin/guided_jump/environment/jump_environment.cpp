@@ -88,7 +88,8 @@ Eigen::Matrix3d rotationZYX(double roll, double pitch, double yaw) {
 
 const std::vector<pronk_param_decl>& EnvironmentSettings::parameters() {
 static const std::vector<pronk_param_decl> decls = {
-      {kDeclSize, "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s", "episode length, from reset"},
+      {kDeclSize, "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s",
+       "episode length, from reset; a jump planned to touch down later runs until 0.3 s after its touchdown"},
       // Empty: derived from the robot (action_mapping.h, scaledActionRanges).
       {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
        "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
@@ -174,6 +175,7 @@ void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_r
   action_.reset();
   record_ = jump::JumpRecord{};
   prior_refusal_.reset();
+  end_time_ = settings_.duration;
   started_ = false;
   previous_phase_ = JumpPhase::kStand;
   rest_time_.reset();
@@ -277,6 +279,9 @@ void JumpEnvironment::act(const double* raw_action) {
   metric("planned_apex_height", flight.apexHeight() - standing_height_);
   const std::optional<double> t_fall = flight.landingTime(target_com.z());
   metric("planned_touchdown_time", t_fall ? t_lift_off + *t_fall : NAN);
+  // A long flight (a far drop, a high arc over an edge) is not cut off in the
+  // air: the episode lasts until the landing has its gains back.
+  end_time_ = std::max(settings_.duration, t_fall ? t_lift_off + *t_fall + LandingPhase::kLandingRamp : 0.0);
   metric("planned_flight_time", t_fall ? *t_fall : NAN);
   const std::optional<Eigen::Vector3d> landing = flight.landingPoint(target_com.z());
   metric("predicted_landing_x", landing ? landing->x() : NAN);
@@ -333,7 +338,7 @@ bool JumpEnvironment::step(const pronk_robot_state& state, double* torque) {
   } else if (rest_time_ && vec(state.com_velocity).norm() >= kRestSpeed) {
     rest_time_.reset();  // moving again: not at rest yet
   }
-  return state.time - reset_time_ >= settings_.duration - 1e-9;
+  return state.time - reset_time_ >= end_time_ - 1e-9;
 }
 
 double JumpEnvironment::finish(const pronk_robot_state& state) {

@@ -8,7 +8,9 @@
 //                    anything moves: a flight whose apex stays below the target,
 //                    a thrust path that loses a foot's reach, or one the motors
 //                    cannot push, is rejected (PRONK_REJECTED, with why);
-//   step():          the guided_jump phase machine (control/jump_controller.h);
+//   step():          the guided_jump phase machine (control/jump_controller.h),
+//                    until `duration`, or until the landing has its gains back
+//                    (0.3 s after the planned touchdown) when that is later;
 //   finish():        the paper's reward with every term reported as a metric
 //                    (method/reward.h), plus the plan's predictions;
 //   prior_action():  the analytic ballistic planner (method/planner.h) as raw
@@ -121,6 +123,7 @@ class JumpEnvironment {
   std::array<double, kObservationSize> task_{};
   bool has_task_ = false;
   double reset_time_ = 0;
+  double end_time_ = 0;  // s after reset: duration, or later for a flight that lands after it
   StartFrame start_;
   double standing_height_ = 0;
   Eigen::Vector3d com_to_trunk_ = Eigen::Vector3d::Zero();
