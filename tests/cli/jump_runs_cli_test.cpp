@@ -851,19 +851,23 @@ TEST(JumpRuns, DcMotorKeepsEveryTorqueOnItsTorqueSpeedLine) {
   EXPECT_LT(dc["error_xy"].get<double>(), 0.05);
 }
 
-// An episode shorter than the jump (duration 0.6 s, the touchdown near 1 s)
-// is not cut off in the air: it lasts until the landing has its gains back,
-// 0.3 s after the planned touchdown, and the jump lands.
-TEST(JumpRuns, AFlightThatLandsAfterTheDurationIsNotCutOff) {
+// An episode whose duration (0.75 s) ends in the flight (lift-off near 0.65 s,
+// touchdown near 0.85 s) is not cut off in the air: it runs on until the
+// landing has its gains back, 0.3 s after the touchdown, and the jump lands.
+// One that ends before the lift-off ends there (DurationFlagSetsTheEpisodeLength).
+TEST(JumpRuns, AFlightInTheAirAtTheDurationIsNotCutOff) {
   const std::string out = outDir("jump_short_duration");
   const CommandRun r =
-      pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --param duration=0.6 --out " + out);
+      pronk("run " + source("scenarios/go1/forward.xml") + " --policy ballistic --param duration=0.75 --out " + out);
   EXPECT_EQ(r.status, 0) << r.output;
   const nlohmann::json j = results(out);
   ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
   EXPECT_EQ(j[0]["status"], "ok") << j[0].dump().substr(0, 600);
-  const double touchdown = j[0]["metrics"]["planned_touchdown_time"].get<double>();
-  EXPECT_GT(touchdown, 0.6);
+  ASSERT_TRUE(j[0]["events"]["lift_off"].is_number()) << j[0]["events"].dump();
+  ASSERT_TRUE(j[0]["events"]["touchdown"].is_number()) << j[0]["events"].dump();
+  EXPECT_LT(j[0]["events"]["lift_off"].get<double>(), 0.75);
+  const double touchdown = j[0]["events"]["touchdown"].get<double>();
+  EXPECT_GT(touchdown, 0.75);
   EXPECT_NEAR(j[0]["simulated_s"].get<double>(), touchdown + 0.3, 2e-3);
 }
 

@@ -16,6 +16,7 @@ namespace {
 constexpr uint32_t kDeclSize = sizeof(pronk_param_decl);
 constexpr int32_t kActionSize = jump::kActionSize;
 constexpr double kRestSpeed = 0.05;  // m/s: the CoM is at rest below this
+constexpr double kMaxOverrun = 2.0;  // s past `duration` that a robot in the air may run on
 constexpr double kHipRadiusPerLeg = 0.108;  // the hip motor's radius per m of leg (thigh + calf)
 
 // The paper's Go1 workspace band of the trunk height (m), scaled like the ranges.
@@ -89,7 +90,7 @@ Eigen::Matrix3d rotationZYX(double roll, double pitch, double yaw) {
 const std::vector<pronk_param_decl>& EnvironmentSettings::parameters() {
 static const std::vector<pronk_param_decl> decls = {
       {kDeclSize, "duration", PRONK_PARAM_REAL, 0, 0.01, 60.0, 0, "1.5", "s",
-       "episode length, from reset; a jump planned to touch down later runs until 0.3 s after its touchdown"},
+       "episode length, from reset; a robot in the air then runs on until 0.3 s after a foot is down"},
       // Empty: derived from the robot (action_mapping.h, scaledActionRanges).
       {kDeclSize, "action_min", PRONK_PARAM_VECTOR, 0, 1.0, -1.0, 0, "", "SI",
        "lower ends of the 13 action ranges (T_th r_p theta_p r_v theta_v k d roll pitch yaw and rates; "
@@ -175,7 +176,9 @@ void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_r
   action_.reset();
   record_ = jump::JumpRecord{};
   prior_refusal_.reset();
-  end_time_ = settings_.duration;
+  overrun_.reset();
+  feet_down_ = true;
+  touched_ = 0.0;
   started_ = false;
   previous_phase_ = JumpPhase::kStand;
   rest_time_.reset();
@@ -279,9 +282,6 @@ void JumpEnvironment::act(const double* raw_action) {
   metric("planned_apex_height", flight.apexHeight() - standing_height_);
   const std::optional<double> t_fall = flight.landingTime(target_com.z());
   metric("planned_touchdown_time", t_fall ? t_lift_off + *t_fall : NAN);
-  // A long flight (a far drop, a high arc over an edge) is not cut off in the
-  // air: the episode lasts until the landing has its gains back.
-  end_time_ = std::max(settings_.duration, t_fall ? t_lift_off + *t_fall + LandingPhase::kLandingRamp : 0.0);
   metric("planned_flight_time", t_fall ? *t_fall : NAN);
   const std::optional<Eigen::Vector3d> landing = flight.landingPoint(target_com.z());
   metric("predicted_landing_x", landing ? landing->x() : NAN);
@@ -338,7 +338,18 @@ bool JumpEnvironment::step(const pronk_robot_state& state, double* torque) {
   } else if (rest_time_ && vec(state.com_velocity).norm() >= kRestSpeed) {
     rest_time_.reset();  // moving again: not at rest yet
   }
-  return state.time - reset_time_ >= end_time_ - 1e-9;
+  const double t = state.time - reset_time_;
+  bool down = false;
+  for (int f = 0; f < feet_; ++f) down = down || state.foot_in_contact[f] != 0;
+  if (down && !feet_down_) touched_ = t;
+  feet_down_ = down;
+  if (t < settings_.duration - 1e-9) return false;
+  // A robot in the air at `duration` (a far drop, a high arc over an edge, a
+  // bounce) is not cut off there: it runs on until its landing has its gains
+  // back, kLandingRamp after a foot is down again.
+  if (!overrun_) overrun_ = !down;
+  if (!*overrun_ || t >= settings_.duration + kMaxOverrun - 1e-9) return true;
+  return down && t >= touched_ + LandingPhase::kLandingRamp - 1e-9;
 }
 
 double JumpEnvironment::finish(const pronk_robot_state& state) {

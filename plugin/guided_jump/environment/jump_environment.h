@@ -9,8 +9,8 @@
 //                    a thrust path that loses a foot's reach, or one the motors
 //                    cannot push, is rejected (PRONK_REJECTED, with why);
 //   step():          the guided_jump phase machine (control/jump_controller.h),
-//                    until `duration`, or until the landing has its gains back
-//                    (0.3 s after the planned touchdown) when that is later;
+//                    until `duration`; a robot in the air then runs on until
+//                    0.3 s after a foot is down (the landing's gains back);
 //   finish():        the paper's reward with every term reported as a metric
 //                    (method/reward.h), plus the plan's predictions;
 //   prior_action():  the analytic ballistic planner (method/planner.h) as raw
@@ -123,7 +123,6 @@ class JumpEnvironment {
   std::array<double, kObservationSize> task_{};
   bool has_task_ = false;
   double reset_time_ = 0;
-  double end_time_ = 0;  // s after reset: duration, or later for a flight that lands after it
   StartFrame start_;
   double standing_height_ = 0;
   Eigen::Vector3d com_to_trunk_ = Eigen::Vector3d::Zero();
@@ -137,6 +136,9 @@ class JumpEnvironment {
   JumpPhase previous_phase_ = JumpPhase::kStand;
   jump::JumpRecord record_;
   std::optional<double> rest_time_;
+  std::optional<bool> overrun_;  // at `duration`: whether the robot was in the air, and runs on
+  bool feet_down_ = true;          // a foot was in contact at the last tick
+  double touched_ = 0.0;           // s after reset: the last time a foot came down
   // The planner's best try and why it is infeasible, from this episode's
   // prior_action(): act() given that very action refuses it for the planner's
   // reason (the edge it cannot clear, the foot it loses) rather than for the
