@@ -52,7 +52,8 @@ class LandingPhase {
   // the CoM there, and the ballistic prior aims short by it.
   static Eigen::Vector2d landingStop(const LandingSettings& landing, const Eigen::Vector3d& touchdown_velocity);
 
-  LandingPhase(LegDrive& drive, const LandingSettings& settings) : drive_(drive), settings_(settings), clearance_(drive) {}
+  LandingPhase(LegDrive& drive, const LandingSettings& settings)
+      : drive_(drive), settings_(settings), clearance_(drive) {}
   const LandingSettings& settings() const { return settings_; }
 
   // Before a jump: no touchdown yet.

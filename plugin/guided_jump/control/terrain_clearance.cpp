@@ -77,8 +77,9 @@ double TerrainClearance::apply(const pronk_robot_state& s, const JumpPlan& plan)
   // Ahead: the trunk's horizontal travel (none for a jump in place).
   const Eigen::Vector2d travel(s.com_velocity[0], s.com_velocity[1]);
   const int swings = travel.norm() > kMinTravel ? kSwingSteps : 0;
-  const Eigen::Vector3d ahead = swings > 0 ? Eigen::Vector3d(travel.x(), travel.y(), 0.0).normalized() : Eigen::Vector3d::Zero();
-  double raised = 0.0;
+  const Eigen::Vector3d ahead =
+      swings > 0 ? Eigen::Vector3d(travel.x(), travel.y(), 0.0).normalized() : Eigen::Vector3d::Zero();
+  double largest = 0.0;
   for (int f = 0; f < drive_.footCount(); ++f) {
     if (s.foot_in_contact[f]) continue;
     Eigen::Vector3d q = drive_.q_ref().segment<3>(3 * f);
@@ -112,9 +113,9 @@ double TerrainClearance::apply(const pronk_robot_state& s, const JumpPlan& plan)
       moved += best_move;
     }
     drive_.q_ref().segment<3>(3 * f) = q;
-    raised = std::max(raised, moved);
+    largest = std::max(largest, moved);
   }
-  return raised;
+  return largest;
 }
 
 }  // namespace pronk::guided_jump
