@@ -208,7 +208,7 @@ jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards,
   terrain.tuck_time_s = FlightPhase::kBlendTime;
   if (terrain.edges.empty() || !legs_) return terrain;
   // The hips, and the knees and feet at the flight's tuck, about the CoM. The
-  // hips are the motors' balls, about a ninth of a leg across (the Go1's 0.046 m
+  // hips are the motors, balls of about a ninth of a leg in radius (the Go1's 0.046 m
   // on its 0.426 m leg); the knees and feet the foot's.
   const std::array<double, 3>& tuck = settings_.jump.flight.tuck;
   const Eigen::Vector3d q_tuck(tuck[0], tuck[1], tuck[2]);
