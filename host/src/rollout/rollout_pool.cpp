@@ -64,9 +64,10 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
     return record;
   }
   Terrain terrain(s.ground, s.ground_height, s.terrain);
-  if (!options_.reuse_worlds || !worker.world || worker.assignments != worldAssignments(episode)) {
+  std::vector<std::pair<std::string, double>> built_from = worldAssignments(episode);
+  if (!options_.reuse_worlds || !worker.world || worker.assignments != built_from) {
     worker.world = std::make_unique<World>(*robot_, s.platform, s.sim, terrain);
-    worker.assignments = worldAssignments(episode);
+    worker.assignments = std::move(built_from);
     ++worlds_built_;
   } else {
     worker.world->restart(s.platform.base_position, s.platform.base_yaw, std::move(terrain));

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -28,28 +30,39 @@ void TerrainEdges::check() const {
 
 namespace {
 
-// The worst shortfall of the body's points not tucked (trunk frame, turned by
-// yaw in S) about the CoM c over the higher side of an edge; u is the jump's
-// horizontal direction.
-void hipsOverEdges(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const Eigen::Vector2d& u,
-                   const Eigen::Vector3d& c, double yaw, EdgePass* pass) {
-  const double x_com = (c - origin).head<2>().dot(u);
+// The jump's horizontal direction from `origin` towards c_tg; none when there
+// is nothing to check (no edges, or a jump in place).
+std::optional<Eigen::Vector2d> jumpDirection(const TerrainEdges& terrain, const Eigen::Vector3d& origin,
+                                             const Eigen::Vector3d& c_tg) {
+  if (terrain.edges.empty()) return std::nullopt;
+  const Eigen::Vector2d towards = (c_tg - origin).head<2>();
+  if (!(towards.norm() > 0.0)) return std::nullopt;
+  return towards.normalized();
+}
+
+// Point p of the body about the CoM c, the trunk turned by yaw in S: its
+// distance along the jump (u) and its ball's bottom height.
+std::pair<double, double> pointAt(const TerrainEdges::BodyPoint& p, const Eigen::Vector3d& origin,
+                                  const Eigen::Vector2d& u, const Eigen::Vector3d& c, double yaw) {
   const double cy = std::cos(yaw), sy = std::sin(yaw);
-  for (const TerrainEdges::BodyPoint& p : terrain.body) {
-    if (p.tucked) continue;
-    const double along = x_com + (cy * p.at.x() - sy * p.at.y()) * u.x() + (sy * p.at.x() + cy * p.at.y()) * u.y();
-    const double bottom = c.z() + p.at.z() - p.radius;
-    for (const TerrainEdges::Edge& e : terrain.edges) {
-      // Over the higher side, or within the clearance of its face.
-      const double reach = p.radius + terrain.clearance_m;
-      const bool over_top = e.rising ? along + reach > e.distance : along - reach < e.distance;
-      if (!over_top) continue;
-      const double shortfall = origin.z() + e.top + terrain.clearance_m - bottom;
-      if (shortfall > pass->shortfall) {
-        pass->shortfall = shortfall;
-        pass->edge = e;
-      }
-    }
+  const double along = (c - origin).head<2>().dot(u) + (cy * p.at.x() - sy * p.at.y()) * u.x() +
+                       (sy * p.at.x() + cy * p.at.y()) * u.y();
+  return {along, c.z() + p.at.z() - p.radius};
+}
+
+// > 0: a point `along` the jump is over edge e's higher side, or within
+// `reach` of its face.
+double overTop(const TerrainEdges::Edge& e, double along, double reach) {
+  return (e.rising ? along - e.distance : e.distance - along) + reach;
+}
+
+// Keeps the worst shortfall of a point's bottom below e's clearance.
+void record(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const TerrainEdges::Edge& e, double bottom,
+            EdgePass* pass) {
+  const double shortfall = origin.z() + e.top + terrain.clearance_m - bottom;
+  if (shortfall > pass->shortfall) {
+    pass->shortfall = shortfall;
+    pass->edge = e;
   }
 }
 
@@ -59,27 +72,12 @@ EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, co
                   const Eigen::Vector3d& v, const Eigen::Vector3d& c_tg, const Eigen::Vector3d& gravity) {
   constexpr int kSamples = 60;
   EdgePass pass;
-  if (terrain.edges.empty()) return pass;
-  const Eigen::Vector2d towards = (c_tg - origin).head<2>();
-  if (!(towards.norm() > 0.0)) return pass;
-  const Eigen::Vector2d u = towards.normalized();
+  const std::optional<Eigen::Vector2d> u = jumpDirection(terrain, origin, c_tg);
+  if (!u) return pass;
   const BallisticFlight flight(FlightState{c_e, v}, gravity);
   const double T = flight.landingTime(c_tg.z()).value_or(0.0);
-  // A point's distance along the jump and its bottom's height at time t.
   const auto at = [&](const TerrainEdges::BodyPoint& p, double t) {
-    const Eigen::Vector3d c = flight.position(t);
-    const double yaw = T > 0.0 ? terrain.turn_rad * t / T : 0.0;
-    const double cy = std::cos(yaw), sy = std::sin(yaw);
-    const double along = (c - origin).head<2>().dot(u) + (cy * p.at.x() - sy * p.at.y()) * u.x() +
-                         (sy * p.at.x() + cy * p.at.y()) * u.y();
-    return std::pair{along, c.z() + p.at.z() - p.radius};
-  };
-  const auto record = [&](const TerrainEdges::Edge& e, double bottom) {
-    const double shortfall = origin.z() + e.top + terrain.clearance_m - bottom;
-    if (shortfall > pass.shortfall) {
-      pass.shortfall = shortfall;
-      pass.edge = e;
-    }
+    return pointAt(p, origin, *u, flight.position(t), T > 0.0 ? terrain.turn_rad * t / T : 0.0);
   };
   // Between two samples a point's distance along the jump is taken as linear
   // (exact without a turn) and its height is a parabola, lowest at an end of
@@ -87,19 +85,19 @@ EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, co
   // comes over (or within the clearance of) the edge's face.
   for (const TerrainEdges::BodyPoint& p : terrain.body) {
     const double t_first = p.tucked ? std::min(terrain.tuck_time_s, T) : 0.0;
+    const double reach = p.radius + terrain.clearance_m;
+    auto [a0, z0] = at(p, t_first);
     for (int i = 0; i < kSamples; ++i) {
       const double t0 = t_first + (T - t_first) * i / kSamples, t1 = t_first + (T - t_first) * (i + 1) / kSamples;
-      const auto [a0, z0] = at(p, t0);
       const auto [a1, z1] = at(p, t1);
-      const double reach = p.radius + terrain.clearance_m;
       for (const TerrainEdges::Edge& e : terrain.edges) {
-        // > 0: over the higher side (or within reach of its face).
-        const double s0 = (e.rising ? a0 - e.distance : e.distance - a0) + reach;
-        const double s1 = (e.rising ? a1 - e.distance : e.distance - a1) + reach;
-        if (s0 > 0.0) record(e, z0);
-        if (s1 > 0.0) record(e, z1);
-        if ((s0 > 0.0) != (s1 > 0.0)) record(e, at(p, t0 + (t1 - t0) * s0 / (s0 - s1)).second);
+        const double s0 = overTop(e, a0, reach), s1 = overTop(e, a1, reach);
+        if (s0 > 0.0) record(terrain, origin, e, z0, &pass);
+        if (s1 > 0.0) record(terrain, origin, e, z1, &pass);
+        if ((s0 > 0.0) != (s1 > 0.0)) record(terrain, origin, e, at(p, t0 + (t1 - t0) * s0 / (s0 - s1)).second, &pass);
       }
+      a0 = a1;
+      z0 = z1;
     }
   }
   return pass;
@@ -109,12 +107,17 @@ EdgePass thrustEdgePass(const TerrainEdges& terrain, const Eigen::Vector3d& orig
                         const Eigen::Vector3d& c_tg) {
   constexpr int kSamples = 40;
   EdgePass pass;
-  if (terrain.edges.empty()) return pass;
-  const Eigen::Vector2d towards = (c_tg - origin).head<2>();
-  if (!(towards.norm() > 0.0)) return pass;
-  const Eigen::Vector2d u = towards.normalized();
+  const std::optional<Eigen::Vector2d> u = jumpDirection(terrain, origin, c_tg);
+  if (!u) return pass;
   for (int i = 0; i <= kSamples; ++i) {
-    hipsOverEdges(terrain, origin, u, thrust.position(thrust.duration() * i / kSamples), 0.0, &pass);
+    const Eigen::Vector3d c = thrust.position(thrust.duration() * i / kSamples);
+    for (const TerrainEdges::BodyPoint& p : terrain.body) {
+      if (p.tucked) continue;  // the legs tuck only in flight
+      const auto [along, bottom] = pointAt(p, origin, *u, c, 0.0);
+      for (const TerrainEdges::Edge& e : terrain.edges) {
+        if (overTop(e, along, p.radius + terrain.clearance_m) > 0.0) record(terrain, origin, e, bottom, &pass);
+      }
+    }
   }
   return pass;
 }
