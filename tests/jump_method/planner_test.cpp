@@ -679,6 +679,56 @@ TEST(Planner, RejectsBadInput) {
   EXPECT_THROW(planJump({{0.4, 0.0, 0.0}, 0.0}, cfg), std::invalid_argument);
 }
 
+// Froude similarity: a robot 1.7 times the Go1's size, with the rule's constants
+// scaled, plans the same jump to a target 1.7 times as far: the same angles and
+// choices, lengths times 1.7, durations and speeds times sqrt(1.7).
+TEST(Planner, ScaledToARobotTheRulePlansTheFroudeSimilarJump) {
+  const double scale = 1.7, time = std::sqrt(scale);
+  PlannerConfig go1 = go1Config(false);
+  go1.sideways_roll_rate_gain = 1.5;
+  PlannerConfig big = go1.scaledToRobot(scale);
+  big.start_com = scale * go1.start_com;
+  big.ranges = scaledActionRanges(scale);
+  for (ActionParameter p : {ActionParameter::kThrustDuration, ActionParameter::kLiftOffSpeed}) {
+    big.ranges[p].min *= time;
+    big.ranges[p].max *= time;
+  }
+  for (ActionParameter p : {ActionParameter::kLiftOffRollRate, ActionParameter::kLiftOffPitchRate,
+                            ActionParameter::kLiftOffYawRate}) {
+    big.ranges[p].min /= time;
+    big.ranges[p].max /= time;
+  }
+  int compared = 0;
+  for (const JumpTarget& target : {JumpTarget{{0.5, 0.0, 0.0}, 0.0}, JumpTarget{{0.3, 0.4, 0.0}, 0.6},
+                                   JumpTarget{{-0.3, -0.2, 0.2}, -0.5}, JumpTarget{{0.0, 0.5, 0.0}, 0.0},
+                                   JumpTarget{{0.6, 0.2, -0.3}, 1.2}}) {
+    const PlannedJump small = planJump(target, go1);
+    const PlannedJump large = planJump({scale * target.displacement, target.yaw_rad}, big);
+    ASSERT_EQ(small.feasible, large.feasible) << target.displacement.transpose() << ": " << large.reason;
+    if (!small.feasible) continue;
+    ++compared;
+    const JumpAction& a = small.action;
+    const JumpAction& b = large.action;
+    EXPECT_NEAR(b.thrust_duration_s, time * a.thrust_duration_s, 1e-9);
+    EXPECT_NEAR(b.liftoff_radius_m, scale * a.liftoff_radius_m, 1e-9);
+    EXPECT_NEAR(b.liftoff_elevation_rad, a.liftoff_elevation_rad, 1e-9);
+    EXPECT_NEAR(b.liftoff_speed_mps, time * a.liftoff_speed_mps, 1e-9);
+    EXPECT_NEAR(b.velocity_elevation_rad, a.velocity_elevation_rad, 1e-9);
+    EXPECT_NEAR(b.speed_ratio, a.speed_ratio, 1e-9);
+    EXPECT_NEAR(b.explosive_distance_m, scale * a.explosive_distance_m, 1e-9);
+    EXPECT_TRUE(b.liftoff_rpy_rad.isApprox(a.liftoff_rpy_rad, 1e-9));
+    EXPECT_TRUE((time * b.liftoff_rpy_rate_radps).isApprox(a.liftoff_rpy_rate_radps, 1e-9));
+    EXPECT_NEAR(large.flight_time, time * small.flight_time, 1e-9);
+  }
+  EXPECT_GE(compared, 4);
+  // Scale 1 is the Go1's rule itself; a scale that is no size is refused.
+  const PlannerConfig same = go1.scaledToRobot(1.0);
+  EXPECT_EQ(same.thrust_duration_s, go1.thrust_duration_s);
+  EXPECT_EQ(same.max_bezier_speed_mps, go1.max_bezier_speed_mps);
+  EXPECT_THROW(go1.scaledToRobot(0.0), std::invalid_argument);
+  EXPECT_THROW(go1.scaledToRobot(std::nan("")), std::invalid_argument);
+}
+
 TEST(Planner, PriorJumpTurnsHalfOnTheGroundAndAimsShortByTheLandingStop) {
   PlannerConfig cfg = go1Config(true);
   const JumpTarget target{{0.4, 0.1, 0.0}, 0.4};

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "pronk/plugin_registry.h"
 
 namespace pronk {
@@ -164,6 +166,26 @@ TEST_F(ParamSchema, GuidedJumpTakesTheStanceAndGainsFromThePlatform) {
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("a1.xml:7: the platform's stance '0 0.8' for parameter 'stance' of environment "
                                     "'jump'"));
+  }
+}
+
+// The jump environment keeps at most 25 parameters (docs/method.md,
+// "Parameters"), each with a range and a one-line reason for `pronk plugins`.
+TEST_F(ParamSchema, TheJumpEnvironmentDeclaresAtMost25ParametersEachWithARangeAndAReason) {
+  registry_.load(PRONK_GUIDED_JUMP_PLUGIN);
+  const pronk_factory* f = registry_.find(PRONK_FACTORY_ENVIRONMENT, "jump");
+  ASSERT_NE(f, nullptr);
+  EXPECT_LE(f->param_count, 25);
+  for (int32_t i = 0; i < f->param_count; ++i) {
+    const pronk_param_decl& d = f->params[i];
+    ASSERT_NE(d.name, nullptr);
+    ASSERT_NE(d.description, nullptr) << d.name;
+    ASSERT_NE(d.unit, nullptr) << d.name;
+    EXPECT_GE(std::string(d.description).size(), 20u) << d.name;
+    EXPECT_EQ(std::string(d.description).find('\n'), std::string::npos) << d.name;
+    if (d.type == PRONK_PARAM_REAL || d.type == PRONK_PARAM_INT) {
+      EXPECT_LT(d.min_value, d.max_value) << d.name;
+    }
   }
 }
 

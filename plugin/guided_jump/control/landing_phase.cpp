@@ -18,7 +18,7 @@ const std::vector<pronk_param_decl>& LandingSettings::parameters() {
   static const std::vector<pronk_param_decl> decls = {
       {kDeclSize, "landing_frequency", PRONK_PARAM_REAL, 0, 0.1, 100.0, 0, "5", "rad/s",
        "landing: natural frequency of the CoM's critically damped stop (also where the planner expects it to stop)"},
-      {kDeclSize, "landing_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0.6", "",
+      {kDeclSize, "landing_friction", PRONK_PARAM_REAL, 0, 0.0, 2.0, 0, "0.45", "",
        "landing: the share of the normal force the CoM's stop may ask sideways"},
       {kDeclSize, "landing_tilt_gain", PRONK_PARAM_REAL, 0, 0.0, 1000.0, 0, "4", "N m/rad/kg",
        "landing: trunk levelling stiffness per kg of the robot's mass"},

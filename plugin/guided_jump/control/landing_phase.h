@@ -29,7 +29,7 @@ struct LandingSettings {
   // down: with the reference at the standing height at once, the compressed legs
   // throw the robot back into the air.
   double vertical_frequency = 10.0;
-  double friction = 0.6;       // the share of the normal force the stop may ask sideways
+  double friction = 0.45;      // the share of the normal force the stop may ask sideways
   double tilt = 4.0;           // N m / rad / kg: levelling stiffness
   double tilt_damping = 0.4;   // N m s / rad / kg: levelling damping
   double yaw_gain = 10.0;      // N m / rad / kg: towards the plan's touchdown heading

@@ -22,13 +22,14 @@ constexpr double kHipRadiusPerLeg = 0.108;  // the hip motor's radius per m of l
 // The paper's Go1 workspace band of the trunk height (m), scaled like the ranges.
 constexpr double kGo1WorkspaceZ[2] = {0.15, 0.40};
 
-// The action ranges and the workspace band from the robot: lengths scaled by
-// its leg length over the Go1's (no leg model: the Go1's own numbers).
+// The action ranges, the workspace band and the planner's length scale from the
+// robot: its leg length over the Go1's (no leg model: the Go1's own numbers).
 void deriveFromRobot(EnvironmentSettings* s, const std::optional<std::array<jump::LegGeometry, jump::kLegCount>>& legs) {
   double scale = 1.0;
   if (legs) {
     scale = jump::lengthScaleToGo1(jump::meanLegLength(*legs));
   }
+  s->length_scale = scale;
   const jump::ActionRanges derived = jump::scaledActionRanges(scale);
   for (int i = 0; i < kActionSize; ++i) {
     s->ranges.bounds[i] = {s->action_min.empty() ? derived.bounds[i].min : s->action_min[i],
@@ -71,7 +72,6 @@ EnvironmentSettings EnvironmentSettings::read(const ParamReader& read) {
     s.reward.workspace_z_max = band[1];
   }
   s.reward.raw_action_limit = s.ranges.raw_limit;
-  s.max_speed_shortfall = read.real("max_speed_shortfall");
   s.knee_clearance = read.real("knee_clearance");
   s.sideways_roll_rate_gain = read.real("sideways_roll_rate_gain");
   return s;
@@ -104,12 +104,9 @@ static const std::vector<pronk_param_decl> decls = {
       {kDeclSize, "knee_clearance", PRONK_PARAM_REAL, 0, -1.0, 1.0, 0, "0.01", "m",
        "safety filter and planner (with a leg model): every knee stays this far above its stance foot's "
        "centre on the thrust path (-1: off)"},
-      {kDeclSize, "max_speed_shortfall", PRONK_PARAM_REAL, 0, 0.0, 10.0, 0, "0.1", "m/s",
-       "safety filter and planner: the lift-off speed the motors are predicted to miss by at most (the "
-       "torque check, under the 'motor' model)"},
       {kDeclSize, "sideways_roll_rate_gain", PRONK_PARAM_REAL, 0, -10.0, 10.0, 0, "1.5", "1/m",
-       "planner: lift-off roll rate (rad/s) per m/s of lift-off velocity across the trunk, clamped into the "
-       "roll rate range (0: none)"},
+       "planner: lift-off roll rate (rad/s) per m/s of lift-off velocity across the trunk of a Go1-sized "
+       "robot (Froude-scaled to the robot's legs), clamped into the roll rate range (0: none)"},
   };
   return decls;
 }
@@ -232,6 +229,8 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   config.start_com = Eigen::Vector3d(0, 0, standing_height_);
   config.standing_com_height = standing_height_;
   config.sideways_roll_rate_gain = settings_.sideways_roll_rate_gain;
+  // The rule's constants were set for the Go1: Froude-scaled to this robot.
+  config = config.scaledToRobot(settings_.length_scale);
   if (std::optional<jump::LegWorkspace> ws = workspace()) config.workspace = *ws;
   jump::JumpTarget target;
   target.displacement = Eigen::Vector3d(observation[0], observation[1], observation[2]);
@@ -247,7 +246,10 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   if (!plan.feasible && infeasible) *infeasible = "no feasible jump: " + plan.reason;
   const jump::ActionVector raw = jump::unmapAction(plan.action, settings_.ranges);
   std::vector<double> action(raw.begin(), raw.end());
-  if (!plan.feasible) prior_refusal_ = PriorRefusal{action, std::string(jump::planLimitName(plan.limit)) + ": " + plan.reason};
+  if (!plan.feasible) {
+    prior_refusal_ = PriorRefusal{action, std::string(jump::planLimitName(plan.limit)) + ": " + plan.reason,
+                                  plan.limit == jump::PlanLimit::kTerrain};
+  }
   return action;
 }
 
@@ -304,10 +306,15 @@ void JumpEnvironment::act(const double* raw_action) {
   const jump::SafetyFilterResult safety = jump::safetyFilter(mapped.action, plan, target_com, ballistic, ws);
   if (safety.speed_shortfall) metric("predicted_speed_shortfall", *safety.speed_shortfall);
   if (ws) metric("planned_knee_clearance", jump::thrustKneeClearance(plan, mapped.action, *ws));
+  // The planner's best try for a target it found no plan for is refused for the
+  // planner's reason where the filter refuses it too, and always where the
+  // planner could not clear an edge by its margin: a try it predicts passes an
+  // edge closer than that is not flown into the edge.
+  const bool planners_try = prior_refusal_ && std::equal(prior_refusal_->raw_action.begin(),
+                                                         prior_refusal_->raw_action.end(), raw.begin());
+  if (planners_try && prior_refusal_->terrain) throw Rejected(prior_refusal_->reason);
   if (!safety.verdict) {
-    if (prior_refusal_ && std::equal(prior_refusal_->raw_action.begin(), prior_refusal_->raw_action.end(), raw.begin())) {
-      throw Rejected(prior_refusal_->reason);
-    }
+    if (planners_try) throw Rejected(prior_refusal_->reason);
     throw Rejected(std::string(jump::safetyIssueName(safety.verdict.issue)) + ": " + safety.verdict.reason);
   }
 
@@ -424,7 +431,6 @@ std::optional<jump::LegWorkspace> JumpEnvironment::workspace() const {
   ws.mass = mass_;
   ws.joint_motors = joint_motors_;
   ws.motor = settings_.jump.hold.motor;
-  ws.max_speed_shortfall = settings_.max_speed_shortfall;
   ws.knee_clearance = settings_.knee_clearance;
   return ws;
 }

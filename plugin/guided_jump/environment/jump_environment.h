@@ -56,13 +56,15 @@ struct EnvironmentSettings {
   double duration = 1.5;
   jump::ActionRanges ranges;
   jump::RewardSettings reward;
-  double max_speed_shortfall = 0.1;
   double knee_clearance = 0.01;
   double sideways_roll_rate_gain = 0.0;
   // As set (13 numbers each), or empty: derived from the robot's leg length once
   // the host is known (deriveFromRobot).
   std::vector<double> action_min, action_max;
   bool derive_workspace_z = false;
+  // The robot's leg length over the Go1's (deriveFromRobot): the planner's
+  // constants are Froude-scaled by it (PlannerConfig::scaledToRobot).
+  double length_scale = 1.0;
 
   // The environment's own parameters (the phases' are JumpSettings::parameters()):
   // duration, the action ranges, the reward's, the safety filter's and the planner's.
@@ -146,6 +148,7 @@ class JumpEnvironment {
   struct PriorRefusal {
     std::vector<double> raw_action;
     std::string reason;
+    bool terrain = false;  // the plan was refused for an edge on the way
   };
   std::optional<PriorRefusal> prior_refusal_;
 };

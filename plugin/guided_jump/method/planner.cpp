@@ -428,6 +428,28 @@ const char* planLimitName(PlanLimit limit) {
   return "unknown";
 }
 
+PlannerConfig PlannerConfig::scaledToRobot(double scale) const {
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    throw std::invalid_argument("PlannerConfig::scaledToRobot: the scale must be finite and > 0");
+  }
+  PlannerConfig c = *this;
+  if (scale == 1.0) return c;
+  const double time = std::sqrt(scale);  // and speed
+  for (double& v : c.lift_off_rise_m) v *= scale;
+  for (double& v : c.lift_off_ahead_m) v *= scale;
+  for (double& v : c.thrust_duration_s) v *= time;
+  c.max_bezier_speed_mps *= time;
+  c.min_apex_rise_m *= scale;
+  c.in_place_apex_rise_m *= scale;
+  c.sideways_roll_rate_gain /= scale;
+  for (GentlerThrust& g : c.gentler_thrusts) {
+    for (double& v : g.lift_off_rise_m) v *= scale;
+    for (double& v : g.thrust_duration_s) v *= time;
+    g.max_bezier_speed_mps *= time;
+  }
+  return c;
+}
+
 double PlannerConfig::standingHeight() const {
   return std::isnan(standing_com_height) ? start_com.z() : standing_com_height;
 }

@@ -145,6 +145,12 @@ struct PlannerConfig {
   // stance foot may get on the thrust path (thrustLeavesSupport).
   double min_support_share = 0.2;
 
+  // The rule's constants for a robot `scale` times the Go1's leg length, the
+  // robot they were set for, by Froude similarity (the same motion at the same
+  // gravity): lengths times scale, durations and speeds times sqrt(scale),
+  // rates per metre over scale; accelerations stay. scale 1 changes nothing.
+  PlannerConfig scaledToRobot(double scale) const;
+
   double standingHeight() const;            // standing_com_height or start_com.z
   Eigen::Vector3d polarOrigin() const;      // start_com - standingHeight() e_z
   // Throws std::invalid_argument naming the field on a bad value.
