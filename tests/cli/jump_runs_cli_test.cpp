@@ -626,20 +626,21 @@ TEST(JumpRuns, AWallThatCannotBeClearedIsRefusedNamingItsEdge) {
 }
 
 // Down and sideways off a 0.4 m box from 3 cm behind its edge
-// (go1_off_box_sideways.xml). Turning 45 deg on the way down, the tucked legs
-// pass the edge closer than the planner's clearance: the planner finds no plan,
-// and its best try, which the safety filter alone (no margin) would let run and
-// which rolls the robot off the edge, is refused for the planner's reason,
-// whether the planner or the Go1 policy's aim asked for it. Straight down the
-// policy lands.
+// (go1_off_box_sideways.xml). Turning 45 deg on the way down, the trailing legs
+// swing off the box for the landing, and the jump lands, whether the planner or
+// the Go1 policy's aim asked for it. Turning 90 deg to a nearer spot, they would
+// come down on the box: the planner finds no plan, and its best try is refused
+// for the planner's reason, naming the box the robot stands on. Straight down
+// the policy lands.
 TEST(JumpRuns, OffABoxSidewaysWhatCannotClearTheEdgeIsRefusedNotFlown) {
   for (const std::string policy : {std::string("ballistic"), source("assets/policies/go1_omni.json")}) {
     const std::string dir = outDir(policy == "ballistic" ? "off_box_sideways_planner" : "off_box_sideways_policy");
     const CommandRun r = pronk("run " + testScenario("go1_off_box_sideways.xml") + " --policy " + policy +
                                " --jobs 2 --out " + dir);
     const nlohmann::json j = results(dir);
-    ASSERT_EQ(j.size(), 4u) << r.output;
-    const nlohmann::json& turning = j[3];
+    ASSERT_EQ(j.size(), 5u) << r.output;
+    EXPECT_EQ(j[3]["status"], "ok") << policy << ": " << j[3].dump().substr(0, 600);
+    const nlohmann::json& turning = j[4];
     EXPECT_EQ(turning["status"], "rejected") << policy << ": " << turning.dump().substr(0, 600);
     EXPECT_EQ(turning["simulated_s"].get<double>(), 0.0);
     const std::string reason = turning["failure_reason"].get<std::string>();

@@ -36,24 +36,28 @@ FlightSettings FlightSettings::read(const ParamReader& read) {
 
 FlightPhase::FlightPhase(LegDrive& drive, const FlightSettings& settings, const LandingPhase& landing)
     : drive_(drive), settings_(settings), landing_(landing), clearance_(drive), blend_from_(Eigen::VectorXd::Zero(drive.jointCount())) {
-  if (settings_.extension < 0.0) settings_.extension = derivedExtension();
+  if (settings_.extension < 0.0) {
+    settings_.extension = 0.0;
+    if (drive_.legs() && drive_.footCount() == jump::kLegCount) {
+      double effort = std::numeric_limits<double>::infinity();
+      for (int f = 0; f < jump::kLegCount; ++f) effort = std::min(effort, drive_.motors()[3 * f + 2].effort);
+      settings_.extension =
+          derivedExtension(*drive_.legs(), drive_.hold().stance, effort, drive_.mass(), drive_.gravity().norm());
+    }
+  }
 }
 
-double FlightPhase::derivedExtension() const {
-  const int feet = drive_.footCount();
-  if (!drive_.legs() || feet != jump::kLegCount || !(drive_.gravity().norm() > 0.0) || !(drive_.mass() > 0.0)) {
-    return 0.0;
+double FlightPhase::derivedExtension(const LegModels& legs, const std::array<double, 3>& stance, double knee_effort,
+                                     double mass, double gravity) {
+  if (!(gravity > 0.0) || !(mass > 0.0) || !std::isfinite(knee_effort)) return 0.0;
+  const Eigen::Vector3d q(stance[0], stance[1], stance[2]);
+  double lever = 0.0;
+  for (const jump::LegGeometry& leg : legs) {
+    lever += std::abs(jump::footPosition(leg, q).x() - jump::kneePosition(leg, q).x()) / legs.size();
   }
-  const std::array<double, 3>& q = drive_.hold().stance;
-  const Eigen::Vector3d stance(q[0], q[1], q[2]);
-  double lever = 0.0, effort = std::numeric_limits<double>::infinity();
-  for (int f = 0; f < feet; ++f) {
-    const jump::LegGeometry& leg = (*drive_.legs())[f];
-    lever += std::abs(jump::footPosition(leg, stance).x() - jump::kneePosition(leg, stance).x()) / feet;
-    effort = std::min(effort, drive_.motors()[3 * f + 2].effort);
-  }
-  if (!(lever > 0.0) || !std::isfinite(effort)) return 0.0;  // knees that hold any load need no extension
-  return jump::landingExtension(jump::meanLegLength(*drive_.legs()), lever, effort, drive_.mass(), drive_.gravity().norm(), feet);
+  if (!(lever > 0.0)) return 0.0;  // knees that hold any load need no extension
+  return jump::landingExtension(jump::meanLegLength(legs), lever, knee_effort, mass, gravity,
+                                static_cast<int>(legs.size()));
 }
 
 void FlightPhase::liftOff(const pronk_robot_state& s) {

@@ -49,6 +49,12 @@ class FlightPhase {
   // Resolves a derived extension from the drive's robot.
   FlightPhase(LegDrive& drive, const FlightSettings& settings, const LandingPhase& landing);
 
+  // The derived landing_extension (jump::landingExtension) of a robot with these
+  // legs at the stance joints, its weakest knee's effort (N m), its mass (kg)
+  // and gravity (m/s^2): 0 where the knees hold any load.
+  static double derivedExtension(const LegModels& legs, const std::array<double, 3>& stance, double knee_effort,
+                                 double mass, double gravity);
+
   double kp() const { return drive_.hold().kp / settings_.kp_division; }
   double extension() const { return settings_.extension; }
 
@@ -63,8 +69,6 @@ class FlightPhase {
   void compute(const pronk_robot_state& s, const JumpPlan& plan, bool descending, double elapsed, double* torque);
 
  private:
-  double derivedExtension() const;
-
   LegDrive& drive_;
   FlightSettings settings_;
   const LandingPhase& landing_;

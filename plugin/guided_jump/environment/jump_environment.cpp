@@ -203,19 +203,36 @@ jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards,
   }
   terrain.turn_rad = turn;
   terrain.tuck_time_s = FlightPhase::kBlendTime;
+  terrain.descent_s = FlightPhase::kBlendTime + FlightPhase::kExtensionLead;
+  terrain.descent_blend_s = FlightPhase::kBlendTime;
+  const LandingSettings& landing = settings_.jump.landing;
+  terrain.landing_stop = [landing](const Eigen::Vector3d& v) { return LandingPhase::landingStop(landing, v); };
   if (terrain.edges.empty() || !legs_) return terrain;
-  // The hips, and the knees and feet at the flight's tuck, about the CoM. The
-  // hips are the motors, balls of about a ninth of a leg in radius (the Go1's 0.046 m
-  // on its 0.426 m leg); the knees and feet the foot's.
+  // The hips, and the knees and feet at the flight's tuck and in the landing
+  // pose, about the CoM. The hips are the motors, balls of about a ninth of a
+  // leg in radius (the Go1's 0.046 m on its 0.426 m leg); the knees and feet the
+  // foot's.
   const std::array<double, 3>& tuck = settings_.jump.flight.tuck;
   const Eigen::Vector3d q_tuck(tuck[0], tuck[1], tuck[2]);
+  const std::array<double, 3>& stance = settings_.jump.hold.stance;
+  const Eigen::Vector3d q_stance(stance[0], stance[1], stance[2]);
+  double extension = settings_.jump.flight.extension;
+  if (extension < 0.0) {
+    extension = FlightPhase::derivedExtension(*legs_, stance, joint_motors_[2].effort, mass_, gravity_.norm());
+  }
+  terrain.landing_extension_m = extension;
   const double leg_radius = settings_.reward.foot_radius;
   const double hip_radius = kHipRadiusPerLeg * jump::meanLegLength(*legs_);
   terrain.body.clear();
   for (const jump::LegGeometry& leg : *legs_) {
-    terrain.body.push_back({leg.hipPosition() + com_to_trunk_, hip_radius, false});
-    terrain.body.push_back({jump::kneePosition(leg, q_tuck) + com_to_trunk_, leg_radius, false});
-    terrain.body.push_back({jump::footPosition(leg, q_tuck) + com_to_trunk_, leg_radius, true});
+    const Eigen::Vector3d hip = leg.hipPosition() + com_to_trunk_;
+    const Eigen::Vector3d foot = jump::footPosition(leg, q_stance) - Eigen::Vector3d(0.0, 0.0, extension);
+    const jump::LegIkResult ik = jump::solveLegIk(leg, foot);
+    const Eigen::Vector3d knee = jump::kneePosition(leg, ik.ok() ? ik.q : q_stance);
+    terrain.body.push_back({hip, hip, hip_radius});
+    terrain.body.push_back({jump::kneePosition(leg, q_tuck) + com_to_trunk_, knee + com_to_trunk_, leg_radius});
+    terrain.body.push_back(
+        {jump::footPosition(leg, q_tuck) + com_to_trunk_, foot + com_to_trunk_, leg_radius, true, true});
   }
   return terrain;
 }

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 
 namespace pronk::jump {
@@ -161,6 +162,11 @@ class LiftOffHyperbola {
 // left a distance of (speed left) / frequency further, along the horizontal
 // velocity. Zero when friction takes it all. friction >= 0, frequency > 0.
 Eigen::Vector2d landingStopOffset(const Eigen::Vector3d& touchdown_velocity, double friction, double frequency);
+
+// Where the landing brings the CoM to rest, horizontally, from its touchdown
+// point, for the CoM velocity at touchdown (the controller's landing:
+// landingStopOffset with its gains, control/landing_phase.h).
+using LandingStop = std::function<Eigen::Vector2d(const Eigen::Vector3d& touchdown_velocity)>;
 
 // How much longer than they stand the legs touch down, so that knees that
 // saturate through the stop still have the stroke to stop the fall. In the

@@ -22,7 +22,12 @@ void TerrainEdges::check() const {
       bad("body: a point must be finite, its radius >= 0");
     }
   }
-  for (const auto& [name, value] : {std::pair{"tuck_time_s", tuck_time_s}, std::pair{"clearance_m", clearance_m}}) {
+  for (const BodyPoint& p : body) {
+    if (!p.landing.allFinite()) bad("body: a point's landing pose must be finite");
+  }
+  for (const auto& [name, value] :
+       {std::pair{"tuck_time_s", tuck_time_s}, std::pair{"clearance_m", clearance_m}, std::pair{"descent_s", descent_s},
+        std::pair{"descent_blend_s", descent_blend_s}, std::pair{"landing_extension_m", landing_extension_m}}) {
     if (!(std::isfinite(value) && value >= 0.0)) bad(std::string(name) + " must be finite and >= 0");
   }
   if (!std::isfinite(turn_rad)) bad("turn_rad must be finite");
@@ -40,14 +45,21 @@ std::optional<Eigen::Vector2d> jumpDirection(const TerrainEdges& terrain, const 
   return towards.normalized();
 }
 
-// Point p of the body about the CoM c, the trunk turned by yaw in S: its
-// distance along the jump (u) and its ball's bottom height.
-std::pair<double, double> pointAt(const TerrainEdges::BodyPoint& p, const Eigen::Vector3d& origin,
-                                  const Eigen::Vector2d& u, const Eigen::Vector3d& c, double yaw) {
+// Point `at` of the body about the CoM c, the trunk turned by yaw in S and the
+// point moved by `shift` (S, horizontal): its distance along the jump (u) and
+// the height of its ball's bottom.
+std::pair<double, double> pointAt(const Eigen::Vector3d& at, double radius, const Eigen::Vector3d& origin,
+                                  const Eigen::Vector2d& u, const Eigen::Vector3d& c, double yaw,
+                                  const Eigen::Vector2d& shift) {
   const double cy = std::cos(yaw), sy = std::sin(yaw);
-  const double along = (c - origin).head<2>().dot(u) + (cy * p.at.x() - sy * p.at.y()) * u.x() +
-                       (sy * p.at.x() + cy * p.at.y()) * u.y();
-  return {along, c.z() + p.at.z() - p.radius};
+  const double along = (c - origin).head<2>().dot(u) + (cy * at.x() - sy * at.y()) * u.x() +
+                       (sy * at.x() + cy * at.y()) * u.y() + shift.dot(u);
+  return {along, c.z() + at.z() - radius};
+}
+
+double smoothstep01(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
 }
 
 // > 0: a point `along` the jump is over edge e's higher side, or within
@@ -70,30 +82,48 @@ void record(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const Te
 
 EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, const Eigen::Vector3d& c_e,
                   const Eigen::Vector3d& v, const Eigen::Vector3d& c_tg, const Eigen::Vector3d& gravity) {
-  constexpr int kSamples = 60;
+  constexpr int kFlightSpans = 60, kDescentSpans = 20;
   EdgePass pass;
   const std::optional<Eigen::Vector2d> u = jumpDirection(terrain, origin, c_tg);
   if (!u) return pass;
   const BallisticFlight flight(FlightState{c_e, v}, gravity);
-  const double T = flight.landingTime(c_tg.z()).value_or(0.0);
+  const double T = flight.landingTime(c_tg.z() + terrain.landing_extension_m)
+                       .value_or(flight.landingTime(c_tg.z()).value_or(0.0));
+  const double descent = std::max(0.0, T - terrain.descent_s);
+  Eigen::Vector2d ahead = Eigen::Vector2d::Zero();
+  if (terrain.landing_stop && T > 0.0) ahead = terrain.landing_stop(flight.state(T).velocity);
+  // The pose's share of the landing pose at time t: 0 in flight, 1 from the
+  // swing's end to touchdown.
+  const auto landed = [&](double t) { return smoothstep01((t - descent) / terrain.descent_blend_s); };
   const auto at = [&](const TerrainEdges::BodyPoint& p, double t) {
-    return pointAt(p, origin, *u, flight.position(t), T > 0.0 ? terrain.turn_rad * t / T : 0.0);
+    const double w = t > descent ? landed(t) : 0.0;
+    return pointAt(p.at + w * (p.landing - p.at), p.radius, origin, *u, flight.position(t),
+                   T > 0.0 ? terrain.turn_rad * t / T : 0.0, w * ahead);
   };
   // Between two samples a point's distance along the jump is taken as linear
-  // (exact without a turn) and its height is a parabola, lowest at an end of
-  // the span it is over an edge's higher side: a sample end or the moment it
-  // comes over (or within the clearance of) the edge's face.
+  // (exact in flight without a turn). In flight its height is a parabola, lowest
+  // at an end of the span it is over an edge's higher side: a sample end or the
+  // moment it comes over (or within the clearance of) the edge's face. A foot
+  // over a step's top counts only where it comes over the face.
   for (const TerrainEdges::BodyPoint& p : terrain.body) {
     const double t_first = p.tucked ? std::min(terrain.tuck_time_s, T) : 0.0;
+    const double t_descent = std::max(t_first, descent);
     const double reach = p.radius + terrain.clearance_m;
+    const auto time = [&](int i) {
+      return i <= kFlightSpans ? t_first + (t_descent - t_first) * i / kFlightSpans
+                               : t_descent + (T - t_descent) * (i - kFlightSpans) / kDescentSpans;
+    };
     auto [a0, z0] = at(p, t_first);
-    for (int i = 0; i < kSamples; ++i) {
-      const double t0 = t_first + (T - t_first) * i / kSamples, t1 = t_first + (T - t_first) * (i + 1) / kSamples;
+    for (const TerrainEdges::Edge& e : terrain.edges) {
+      if (overTop(e, a0, reach) > 0.0) record(terrain, origin, e, z0, &pass);
+    }
+    for (int i = 0; i < kFlightSpans + kDescentSpans; ++i) {
+      const double t0 = time(i), t1 = time(i + 1);
       const auto [a1, z1] = at(p, t1);
       for (const TerrainEdges::Edge& e : terrain.edges) {
         const double s0 = overTop(e, a0, reach), s1 = overTop(e, a1, reach);
-        if (s0 > 0.0) record(terrain, origin, e, z0, &pass);
-        if (s1 > 0.0) record(terrain, origin, e, z1, &pass);
+        const bool lands_on_top = p.foot && e.rising;
+        if (s1 > 0.0 && !lands_on_top) record(terrain, origin, e, z1, &pass);
         if ((s0 > 0.0) != (s1 > 0.0)) record(terrain, origin, e, at(p, t0 + (t1 - t0) * s0 / (s0 - s1)).second, &pass);
       }
       a0 = a1;
@@ -113,7 +143,7 @@ EdgePass thrustEdgePass(const TerrainEdges& terrain, const Eigen::Vector3d& orig
     const Eigen::Vector3d c = thrust.position(thrust.duration() * i / kSamples);
     for (const TerrainEdges::BodyPoint& p : terrain.body) {
       if (p.tucked) continue;  // the legs tuck only in flight
-      const auto [along, bottom] = pointAt(p, origin, *u, c, 0.0);
+      const auto [along, bottom] = pointAt(p.at, p.radius, origin, *u, c, 0.0, Eigen::Vector2d::Zero());
       for (const TerrainEdges::Edge& e : terrain.edges) {
         if (overTop(e, along, p.radius + terrain.clearance_m) > 0.0) record(terrain, origin, e, bottom, &pass);
       }

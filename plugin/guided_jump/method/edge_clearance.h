@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "method/ballistics.h"
 #include "method/explosive_phase.h"
 
 namespace pronk::jump {
@@ -28,23 +29,40 @@ struct TerrainEdges {
   std::vector<Edge> edges;  // empty: flat, nothing to clear
   // The body's points that must pass clearance_m above the higher side of an
   // edge while any of them is over it, about the CoM in the trunk's frame (x
-  // ahead, z up), each a ball of its radius: the hips and the knees at the
-  // flight's tuck from lift-off to touchdown, the tucked feet from tuck_time_s
-  // after lift-off (the tuck done). The trunk turns from the start's yaw to
-  // turn_rad over the flight. The defaults are the Go1's.
+  // ahead, z up), each a ball of its radius: the hips, the knees and the feet.
+  // In flight the legs hold the tuck (`at`): the knees from lift-off, the feet
+  // (`tucked`) from tuck_time_s after it, once the tuck is done. From
+  // descent_s before touchdown they swing in descent_blend_s (a smoothstep) to
+  // the landing pose (`landing`: the stance's, landing_extension_m lower,
+  // moved along by landing_stop of the touchdown velocity when one is given),
+  // which they hold to touchdown. A foot over a step's top counts only as it
+  // comes over the face: it lands there. The trunk turns from the start's yaw
+  // to turn_rad over the flight. The defaults are the Go1's.
   struct BodyPoint {
-    Eigen::Vector3d at = Eigen::Vector3d::Zero();  // m
-    double radius = 0.0;                           // m
-    bool tucked = false;                           // from tuck_time_s on
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();       // m, in flight
+    Eigen::Vector3d landing = Eigen::Vector3d::Zero();  // m, in the landing pose
+    double radius = 0.0;                                // m
+    bool tucked = false;                                // from tuck_time_s on
+    bool foot = false;                                  // lands on the surface under it
   };
   std::vector<BodyPoint> body = {
-      {{0.19, 0.13, 0.0}, 0.046, false},   {{0.19, -0.13, -0.0}, 0.046, false},
-      {{-0.19, 0.13, 0.0}, 0.046, false},  {{-0.19, -0.13, -0.0}, 0.046, false},
-      {{-0.02, 0.13, -0.05}, 0.02, false},  {{-0.02, -0.13, -0.05}, 0.02, false},
-      {{-0.40, 0.13, -0.05}, 0.02, false},  {{-0.40, -0.13, -0.05}, 0.02, false},
-      {{0.19, 0.13, -0.15}, 0.02, true},    {{0.19, -0.13, -0.15}, 0.02, true},
-      {{-0.19, 0.13, -0.15}, 0.02, true},   {{-0.19, -0.13, -0.15}, 0.02, true}};
+      {{0.19, 0.13, 0.0}, {0.19, 0.13, 0.0}, 0.046},
+      {{0.19, -0.13, 0.0}, {0.19, -0.13, 0.0}, 0.046},
+      {{-0.19, 0.13, 0.0}, {-0.19, 0.13, 0.0}, 0.046},
+      {{-0.19, -0.13, 0.0}, {-0.19, -0.13, 0.0}, 0.046},
+      {{-0.02, 0.13, -0.05}, {0.04, 0.13, -0.13}, 0.02},
+      {{-0.02, -0.13, -0.05}, {0.04, -0.13, -0.13}, 0.02},
+      {{-0.40, 0.13, -0.05}, {-0.33, 0.13, -0.13}, 0.02},
+      {{-0.40, -0.13, -0.05}, {-0.33, -0.13, -0.13}, 0.02},
+      {{0.19, 0.13, -0.15}, {0.19, 0.13, -0.29}, 0.02, true, true},
+      {{0.19, -0.13, -0.15}, {0.19, -0.13, -0.29}, 0.02, true, true},
+      {{-0.19, 0.13, -0.15}, {-0.19, 0.13, -0.29}, 0.02, true, true},
+      {{-0.19, -0.13, -0.15}, {-0.19, -0.13, -0.29}, 0.02, true, true}};
   double tuck_time_s = 0.1;
+  double descent_s = 0.16;
+  double descent_blend_s = 0.1;
+  double landing_extension_m = 0.0;
+  LandingStop landing_stop;  // none: the feet land under the stance
   double turn_rad = 0.0;
   double clearance_m = 0.03;
 
@@ -55,9 +73,11 @@ struct TerrainEdges {
 // How far (m) the body's lowest point over the higher side of an edge passes
 // below its clearance on the flight from lift-off (c_e, v) down to the height of
 // c_tg, whose horizontal direction from `origin` is the jump's (> 0: too low;
-// -inf: no point over an edge), and which edge is the worst. Each point's path
-// is taken in 60 spans, straight along the jump within each (exact without a
-// turn), its lowest point over an edge found exactly.
+// -inf: no point over an edge), and which edge is the worst. The flight ends at
+// touchdown, when the CoM is down to c_tg's height plus the landing extension.
+// Each point's path is taken in 60 spans, straight along the jump within each
+// (exact without a turn), its lowest point over an edge found exactly in
+// flight; in the descent's swing, at the spans' ends.
 struct EdgePass {
   double shortfall = -std::numeric_limits<double>::infinity();
   std::optional<TerrainEdges::Edge> edge;

@@ -202,11 +202,6 @@ struct PlannedJump {
 // a reason); throws std::invalid_argument for a non-finite target or a bad config.
 PlannedJump planJump(const JumpTarget& target, const PlannerConfig& config = PlannerConfig());
 
-// Where the landing brings the CoM to rest, horizontally, from its touchdown
-// point, for the CoM velocity at touchdown (the controller's landing:
-// landingStopOffset with its gains, control/landing_phase.h).
-using LandingStop = std::function<Eigen::Vector2d(const Eigen::Vector3d& touchdown_velocity)>;
-
 // The jump environment's prior (`pronk run --policy ballistic`): planJump with
 // the yaw split chosen first, aimed short of the target by the landing stop.
 //   1. The yaw split: half the turn on the ground first, then a quarter, then
