@@ -1,4 +1,4 @@
-// Hindsight relabelling (docs/training.md, "Hindsight aim correction"): a jump
+// Hindsight relabelling (docs/training.md, "Hindsight relabelling and the aim correction"): a jump
 // that ended standing is a correct example for the place it reached, whatever
 // its target was. The trainer keeps the newest such pairs (achieved task,
 // residual that reaches it, i.e. the action taken minus the environment's
