@@ -223,7 +223,7 @@ Subcommand declareBench(CLI::App& app, const CommonOptions& common) {
   sub->add_flag("--rollout", o->rollout,
                 "measure the rollout engine instead: the Go1 region sweep (40 targets) through one world per case "
                 "with full episodes and traces, and through the engine at 1 and N threads");
-  sub->add_option("--jobs", o->jobs, "threads of the engine's last row (default: one per core)")
+  sub->add_option("--jobs,-j", o->jobs, "threads of the engine's last row (default: one per core)")
       ->check(CLI::Range(1, 1024));
   return {sub, [&common, o] { return benchCommand(common, *o); }};
 }

@@ -108,7 +108,7 @@ Subcommand declareCheck(CLI::App& app, const CommonOptions& common) {
                                                 "<environment policy>")
       ->check(kNonEmpty);
   cmd->add_option("--junit", options->junit, "write a JUnit XML report: one test case per bound")->check(kNonEmpty);
-  cmd->add_option("--jobs,-j", options->jobs, "worker threads (0 = one per core)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--jobs,-j", options->jobs, "worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   return {cmd, [&common, options] { return runCheck(common, *options); }};
 }
 

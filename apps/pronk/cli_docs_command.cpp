@@ -38,7 +38,7 @@ std::vector<const CLI::Option*> positionalsOf(const CLI::App& app) {
 bool takesValue(const CLI::Option& o) { return o.get_expected_max() > 0; }  // a flag expects none
 
 // The choices of an option checked by CLI::IsMember: its type name reads
-// "TEXT:{side,follow,top,fixed}".
+// "{side,follow,top,fixed}".
 std::vector<std::string> choicesOf(const CLI::Option& o) {
   const std::string type = o.get_type_name();
   const size_t open = type.find('{'), close = type.rfind('}');
@@ -49,10 +49,11 @@ std::vector<std::string> choicesOf(const CLI::Option& o) {
   return out;
 }
 
-// The value's kind as the help shows it ("TEXT", "FLOAT", ...), without the validator's part.
+// The value's kind as the help shows it ("TEXT", "FLOAT", ...), without its range
+// ("INT in [1 - 1024]") or a validator's part ("TEXT:...").
 std::string valueName(const CLI::Option& o) {
   std::string type = o.get_type_name();
-  if (const size_t colon = type.find(':'); colon != std::string::npos) type = type.substr(0, colon);
+  type = type.substr(0, type.find_first_of(": "));
   return type.empty() ? "VALUE" : type;
 }
 

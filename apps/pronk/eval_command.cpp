@@ -32,7 +32,7 @@ struct EvalOptions {
   std::vector<std::string> sweeps;  // only these sets ("targets" = the <targets>); empty = all
   std::string out_dir = "pronk-eval";
   bool resume = false;
-  bool plots = true;
+  bool no_plots = false;
   double radius = 0.2;
   int jobs = 0;
 };
@@ -204,7 +204,7 @@ SetResult runSet(const CommonOptions& common, const EvalOptions& o, const SetToR
               "%zu failed, %zu refused; yaw error mean %.1f deg, max %.1f deg\n",
               s.jumps, 100 * s.withinShare(), o.radius, s.landed, 100 * s.mean, 100 * s.median, 100 * s.p90, s.failed,
               s.rejected, s.yaw_mean_deg, s.yaw_max_deg);
-  if (o.plots && result.complete) {
+  if (!o.no_plots && result.complete) {
     render::plot::PlotContext context{robot.empty() ? pool.robot().name : robot, policyLabel(policy),
                                       fs::path(set.file).stem().string() + " / " + set.set, o.radius};
     try {
@@ -281,11 +281,11 @@ Subcommand declareEval(CLI::App& app, const CommonOptions& common) {
       ->check(kNonEmpty);
   cmd->add_option("--out", options->out_dir, "output directory")->check(kNonEmpty)->capture_default_str();
   cmd->add_flag("--resume", options->resume, "continue the evaluation in --out: only the jumps not yet done run");
-  cmd->add_flag("!--no-plots", options->plots, "write no figures");
+  cmd->add_flag("--no-plots", options->no_plots, "write no figures");
   cmd->add_option("--radius", options->radius, "accuracy threshold for the shares and the contour, m")
       ->check(finiteIn(0, 100, true))
       ->capture_default_str();
-  cmd->add_option("--jobs,-j", options->jobs, "worker threads (0 = one per core)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--jobs,-j", options->jobs, "worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   return {cmd, [&common, options] { return runEval(common, *options); }};
 }
 

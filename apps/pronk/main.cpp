@@ -1,7 +1,10 @@
 // pronk: run quadruped jump scenarios on the Simbody host.
+#include <algorithm>
 #include <iostream>
+#include <vector>
 
 #include "commands.h"
+#include "help_text.h"
 #include "pronk/communicator.h"
 #include "pronk/error.h"
 #include "pronk/plugin_abi.h"
@@ -32,9 +35,22 @@ int main(int argc, char** argv) {
                                             declarePlot(app, common), declareCompletion(app, common),
                                             declareMan(app, common)};
 
+  tidyHelp(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // A first word that is no option and no subcommand: say which it may be.
+    const std::string word = argc > 1 ? argv[1] : "";
+    const auto named = [&word](const CLI::App* sub) { return sub->check_name(word); };
+    const std::vector<CLI::App*> subs = app.get_subcommands({});
+    if (!word.empty() && word[0] != '-' && std::none_of(subs.begin(), subs.end(), named)) {
+      const std::string near = closestSubcommand(app, word);
+      std::cerr << "pronk: '" << word << "' is not a command"
+                << (near.empty() ? std::string() : "; did you mean 'pronk " + near + "'?") << "\n"
+                << "Run with --help for the commands.\n";
+      return kUsageError;
+    }
     const int code = app.exit(e);
     return code == 0 ? kOk : kUsageError;
   }

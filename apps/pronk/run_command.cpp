@@ -168,14 +168,14 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
                   "name the scenario's <render output> suggests")
       ->expected(0, 1)
       ->check(kNonEmpty);
-  sub->add_option("--speed", o->speed, "video playback speed, e.g. 0.25 for slow motion")
+  sub->add_option("--speed", o->speed, "video playback speed, e.g. 0.25 for slow motion (default: the scenario's <render speed>, else 1)")
       ->check(finiteIn(0, 1e3, true));
-  sub->add_option("--fps", o->fps, "video frames per second")->check(finiteIn(1.0, 240.0));
-  sub->add_option("--size", o->size, "video size WIDTHxHEIGHT, both even (default 1280x720)")->check(kNonEmpty);
+  sub->add_option("--fps", o->fps, "video frames per second (default: the scenario's <render fps>, else 30)")->check(finiteIn(1.0, 240.0));
+  sub->add_option("--size", o->size, "video size WIDTHxHEIGHT, both even (default: the scenario's <render>, else 1280x720)")->check(kNonEmpty);
   sub->add_option("--still", o->stills, "also save the video frame at this simulated time (s) as a PNG "
                                              "(repeatable)")
       ->check(finiteIn(0, kMaxEpisodeSeconds));
-  sub->add_option("--camera", o->camera, "video camera")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
+  sub->add_option("--camera", o->camera, "video camera (default: the scenario's <render><camera mode>, else side)")->check(CLI::IsMember({"side", "follow", "top", "fixed"}));
   sub->add_option("--policy", o->policy,
                       "jump to the scenario's targets with this policy: 'ballistic' (the environment's analytic "
                       "planner) or a policy file (default: the scenario's <environment policy>)")->check(kNonEmpty);
@@ -192,7 +192,7 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
         return s.find('=') == std::string::npos || s.front() == '=' ? std::string("expected NAME=VALUE") : std::string();
       });
 
-  sub->add_option("--jobs", o->jobs, "worker threads of a jump run, one World each (default: one per core); "
+  sub->add_option("--jobs,-j", o->jobs, "worker threads of a jump run, one World each (default: one per core); "
                                      "results do not depend on it")
       ->check(CLI::Range(1, 1024));
   sub->add_flag("--full-episodes", o->full_episodes,

@@ -167,7 +167,7 @@ Subcommand declareTrain(CLI::App& app, const CommonOptions& common) {
   sub->add_option("--out", o->out, "the policy file to write; its checkpoint (STEM.checkpoint.json) and "
                                    "train_log.csv go beside it")
       ->required();
-  sub->add_option("--jobs", o->jobs, "worker threads, one World each (default: one per core); the result does not "
+  sub->add_option("--jobs,-j", o->jobs, "worker threads, one World each (default: one per core); the result does not "
                                      "depend on it")
       ->check(CLI::Range(1, 1024));
   sub->add_option("--iterations", o->iterations, "iterations of the whole run (default: the file's)")

@@ -182,8 +182,27 @@ TEST(Cli, ControllerFromTheWrongPluginIsAnInputError) {
 TEST(Cli, UsageErrorsExitWith2) {
   EXPECT_EQ(pronk("run").status, 2);
   EXPECT_EQ(pronk("frobnicate").status, 2);
+  // A mistyped command is named, with the one it is nearest.
+  const Outcome typo = pronk("evl x.xml");
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.output.find("'evl' is not a command; did you mean 'pronk eval'?"), std::string::npos) << typo.output;
   EXPECT_EQ(pronk("run " + source("scenarios/go1/stand.xml") + " --duration -1").status, 2);
   EXPECT_EQ(pronk("--help").status, 0);
+}
+
+TEST(Cli, HelpShowsOneValueNamePerOptionAndTheSameJobsEverywhere) {
+  for (const char* command : {"run", "render", "train", "eval", "check", "bench", "validate", "plot"}) {
+    const Outcome o = pronk(std::string(command) + " --help");
+    ASSERT_EQ(o.status, 0) << command << o.output;
+    // CLI11's type and validator names run together ("TEXT:TEXT", "INT:INT in [...]")
+    // and a negated flag's default ("--no-plots{false}") are not shown.
+    EXPECT_FALSE(std::regex_search(o.output, std::regex(R"([A-Z]+:[A-Z{])"))) << command << o.output;
+    EXPECT_EQ(o.output.find("{false}"), std::string::npos) << command << o.output;
+    if (std::string(command) != "validate" && std::string(command) != "plot" && std::string(command) != "render") {
+      EXPECT_NE(o.output.find("-j,--jobs INT in [1 - 1024]"), std::string::npos) << command << o.output;
+    }
+  }
+  EXPECT_EQ(pronk("eval x.xml --jobs 0").status, 2);
 }
 
 TEST(Cli, MissingPluginPathIsAnInputError) {
