@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "pronk/controller_factory.h"
 #include "pronk/episode.h"
+#include "run_jumps.h"
 #include "video_settings.h"
 
 namespace pronk::cli {
@@ -115,6 +116,15 @@ Trace replay(const World& world, const std::string& path, const std::optional<Re
 
 int renderCommand(const CommonOptions& common, const RenderOptions& options) {
   Scenario scenario = loadScenario(options.scenario);
+  // A scenario with an <environment> jumps: its targets, with its policy or --policy,
+  // as `pronk run --video` films them.
+  if (options.trace.empty() && runsJumps(scenario, options)) return runJumps(common, options, scenario);
+  if (!options.policy.empty()) {
+    throw Error("--policy: " + options.scenario +
+                (!options.trace.empty() ? " is filmed from --trace here, which records what a policy did"
+                 : scenario.environment ? " runs its controller here (--controller replaces the environment)"
+                                        : " has no <environment> for a policy to drive"));
+  }
   if (!options.controller.empty()) {
     scenario.platform.controller = ControllerSpec{options.controller, "", {}, {"--controller", 0}};
   }
@@ -180,6 +190,10 @@ Subcommand declareRender(CLI::App& app, const CommonOptions& common) {
   sub->add_option("--trace", o->trace, "trace.csv of an earlier `pronk run --out` (no simulation)")
       ->check(CLI::ExistingFile);
   sub->add_option("--controller", o->controller, "controller to use instead of the scenario's")->check(kNonEmpty);
+  sub->add_option("--policy", o->policy,
+                  "a jump scenario's policy: 'ballistic' (the environment's analytic planner) or a policy file "
+                  "(default: the scenario's <environment policy>)")
+      ->check(kNonEmpty);
   sub->add_option("--duration", o->duration, "episode length in s")->check(finiteIn(0, kMaxEpisodeSeconds, true));
   sub->add_option("--speed", o->speed, "playback speed, e.g. 0.25 (default: the scenario's <render speed>, else 1)")->check(finiteIn(0, 1e3, true));
   sub->add_option("--fps", o->fps, "frames per second (default: the scenario's <render fps>, else 30)")->check(finiteIn(1.0, 240.0));

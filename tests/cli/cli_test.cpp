@@ -92,6 +92,21 @@ TEST(Cli, RunWritesAVideoOfTheHop) {
   EXPECT_EQ(bad.output.find("simulated"), std::string::npos) << bad.output;
 }
 
+// A jump scenario filmed by simulating it: its targets with --policy (or the
+// file's <environment policy>); without one the error says what to give.
+TEST(Cli, RenderSimulatesAJumpScenarioWithAPolicy) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/render_jump";
+  std::filesystem::remove_all(dir);
+  const Outcome o = pronk("render " + source("scenarios/go1/forward.xml") + " --policy ballistic -o " + dir +
+                          "/forward.mp4 --size 320x240 --fps 10");
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("1 landed"), std::string::npos) << o.output;
+  EXPECT_GT(std::filesystem::file_size(dir + "/forward.mp4"), 1000u);
+  const Outcome none = pronk("render " + source("scenarios/go1/forward.xml") + " -o " + dir + "/x.mp4");
+  EXPECT_EQ(none.status, 3) << none.output;
+  EXPECT_NE(none.output.find("give --policy ballistic or --policy FILE"), std::string::npos) << none.output;
+}
+
 TEST(Cli, RenderReplaysARecordedTraceWithoutSimulating) {
   const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/replay";
   std::filesystem::remove_all(dir);
