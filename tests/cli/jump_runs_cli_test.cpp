@@ -484,8 +484,8 @@ TEST(JumpRuns, TheLandingTurnsTheTrunkToThePlannedHeading) {
   // moment about the vertical towards the plan's touchdown heading
   // (landing_yaw_gain 10 N m/rad/kg, landing_yaw_damping 1.5 N m s/rad/kg, the
   // Go1 task's) turns the trunk back, or on, on its feet: both land within
-  // 0.3 deg (measured 0.17 and 0.23), and as near the target (docs/results.md,
-  // "Session 26").
+  // 0.3 deg (measured 0.17 and 0.23), and as near the target (docs/method.md,
+  // "A landing that holds the planned heading").
   const std::string heading = " --param landing_yaw_gain=10 --param landing_yaw_damping=1.5";
   const std::string damping = " --param landing_yaw_gain=0 --param landing_yaw_damping=0.4";
   for (const std::string scenario : {"diagonal.xml", "twist.xml"}) {
@@ -505,8 +505,8 @@ TEST(JumpRuns, LegsThatTouchDownLongerStopTheAliengosDownJumpsAboveItsThighs) {
   // 11): the Aliengo touches down fast and its knee motors stay saturated
   // at 44 N m through the stop. From the stance pose at touchdown a thigh comes
   // down to the lower ground before the fall is stopped; with the legs longer at
-  // touchdown (the Aliengo task's landing_extension: 0.05 m in session 27, 7.1,
-  // 7.5 and 10.4 cm off; 0.11 m since session 28, 6.9, 4.5 and 6.7 cm) each lands
+  // touchdown (the landing extension derived for the Aliengo, 0.111 m; measured
+  // 6.9, 4.5 and 6.7 cm off at 0.11 m, 7.1, 7.5 and 10.4 cm at 0.05 m) each lands
   // on its feet within 0.12 m (docs/method.md).
   auto run = [](const std::string& name, const std::string& params) {
     return runTestScenario("aliengo_down_jumps.xml", name, params, 3u).second;
@@ -532,7 +532,8 @@ TEST(JumpRuns, AToeThatBrushesTheGroundAfterLiftOffDoesNotStartTheLanding) {
   // Taken for the touchdown, that brush started the landing in mid-air and its
   // stop pulled the flight back: 21.5, 30.1 and 38.6 cm off. The landing now
   // waits for a contact with the CoM no longer rising; each lands within the
-  // paper's 0.2 m (measured 5.6, 15.4 and 10.6 cm; docs/results.md, "Session 28").
+  // paper's 0.2 m (measured 5.6, 15.4 and 10.6 cm at commit d037524; docs/method.md,
+  // "A touchdown is a contact with the CoM no longer rising").
   // The planner's thrust, scaled to the Aliengo's legs, leaves the brush in two
   // of them (6.1 and 10.2 cm off); the third lands 17.1 cm off without one.
   const std::string dir = outDir("jump_aliengo_scuffs");
