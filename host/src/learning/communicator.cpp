@@ -27,9 +27,9 @@ bool launchedByMpi() {
 }
 
 // Finalises MPI at exit when this process initialised it.
-struct MpiSession {
+struct MpiFinalizer {
   bool active = false;
-  ~MpiSession() {
+  ~MpiFinalizer() {
     int finalized = 0;
     if (active && MPI_Finalized(&finalized) == MPI_SUCCESS && !finalized) MPI_Finalize();
   }
@@ -54,14 +54,14 @@ Communicator& Communicator::world() {
 
 Communicator::Communicator() {
 #ifdef PRONK_WITH_MPI
-  static MpiSession session;
+  static MpiFinalizer finalizer;
   if (!launchedByMpi()) return;
   int initialized = 0;
   check(MPI_Initialized(&initialized), "MPI_Initialized");
   if (!initialized) {
     int provided = 0;
     check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
-    session.active = true;
+    finalizer.active = true;
     if (provided < MPI_THREAD_FUNNELED) throw Error("MPI: the library does not allow threads (MPI_THREAD_FUNNELED)");
   }
   check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
