@@ -130,6 +130,13 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   std::printf("environment %s (%s), policy %s, %zu jump(s)%s, %d thread(s)\n", factory_name.c_str(), origin.c_str(),
               policy_name.c_str(), cases.size(), options.sweep.empty() ? "" : (", sweep " + options.sweep).c_str(),
               pool.threads());
+  // Parameters set on the command line, said before the table: a motor=dc run
+  // must not read like a default one.
+  if (!options.params.empty()) {
+    std::string set;
+    for (const std::string& p : options.params) set += (set.empty() ? "" : " ") + p;
+    std::printf("parameters  %s (--param, over the scenario's)\n", set.c_str());
+  }
   printJumpTableHeader(stdout, schema);
   std::fflush(stdout);
 

@@ -919,6 +919,7 @@ TEST(JumpRuns, ParamFlagSetsAnEnvironmentParameter) {
   const std::string out = outDir("jump_param_dc_motor");
   const CommandRun r = pronk("run " + source("scenarios/go1/up.xml") + " --policy ballistic --param motor=dc --out " + out);
   EXPECT_EQ(r.status, 4) << r.output;  // no jump landed
+  EXPECT_NE(r.output.find("parameters  motor=dc (--param, over the scenario's)"), std::string::npos) << r.output;
   const nlohmann::json j = results(out);
   ASSERT_TRUE(j.is_array() && j.size() == 1u) << r.output;
   EXPECT_EQ(j[0]["status"], "rejected");
