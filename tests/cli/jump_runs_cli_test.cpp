@@ -667,15 +667,25 @@ TEST(JumpRuns, PluginWarningsGoToEachJumpsEventsAndOnlyTheFirstTenToStderr) {
   EXPECT_NE(r.output.find("plugin: further info and warning lines are not printed"), std::string::npos) << r.output;
   const nlohmann::json jumps = results(dir);
   ASSERT_TRUE(jumps.is_array() && jumps.size() == 14u) << r.output;
+  const auto warnings = [](const nlohmann::json& jump) {
+    int n = 0;
+    for (const nlohmann::json& e : jump["event_log"]) {
+      n += e["name"] == "plugin_warning" && e["detail"].get<std::string>().find("no feasible jump") != std::string::npos;
+    }
+    return n;
+  };
   for (const nlohmann::json& jump : jumps) {
     EXPECT_EQ(jump["status"], "rejected");
-    bool warned = false;
-    for (const nlohmann::json& e : jump["event_log"]) {
-      warned = warned || (e["name"] == "plugin_warning" &&
-                          e["detail"].get<std::string>().find("no feasible jump") != std::string::npos);
-    }
-    EXPECT_TRUE(warned) << jump["event_log"].dump();
+    EXPECT_EQ(warnings(jump), 1) << jump["event_log"].dump();
   }
+  // An aim correction asks the planner for its aim first, then falls back to the
+  // target: the warning is the episode's, said once.
+  const std::string aimed = outDir("many_infeasible_aim");
+  pronk("run " + testScenario("go1_many_infeasible.xml") + " --policy " +
+        source("tests/training/policies/aim_offset_3cm.json") + " --jobs 2 --out " + aimed);
+  const nlohmann::json aimed_jumps = results(aimed);
+  ASSERT_TRUE(aimed_jumps.is_array() && aimed_jumps.size() == 14u);
+  for (const nlohmann::json& jump : aimed_jumps) EXPECT_EQ(warnings(jump), 1) << jump["event_log"].dump();
 }
 
 TEST(JumpRuns, SweepCasesAreSeededAndReproducible) {

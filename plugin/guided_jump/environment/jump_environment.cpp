@@ -257,9 +257,6 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   const LandingSettings& landing = settings_.jump.landing;
   const jump::PlannedJump plan = jump::planPriorJump(
       target, config, [&landing](const Eigen::Vector3d& v) { return LandingPhase::landingStop(landing, v); });
-  if (!plan.feasible && host_->log) {
-    host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + plan.reason).c_str());
-  }
   if (!plan.feasible && infeasible) *infeasible = "no feasible jump: " + plan.reason;
   const jump::ActionVector raw = jump::unmapAction(plan.action, settings_.ranges);
   std::vector<double> action(raw.begin(), raw.end());
@@ -329,6 +326,11 @@ void JumpEnvironment::act(const double* raw_action) {
   // edge closer than that is not flown into the edge.
   const bool planners_try = prior_refusal_ && std::equal(prior_refusal_->raw_action.begin(),
                                                          prior_refusal_->raw_action.end(), raw.begin());
+  // Said once, for the try the episode takes: a policy may ask the planner for
+  // other targets first (an aim it then falls back from).
+  if (planners_try && host_->log) {
+    host_->log(host_->host, 1, ("jump: the ballistic planner found no feasible jump: " + prior_refusal_->reason).c_str());
+  }
   if (planners_try && prior_refusal_->terrain) throw Rejected(prior_refusal_->reason);
   if (!safety.verdict) {
     if (planners_try) throw Rejected(prior_refusal_->reason);
