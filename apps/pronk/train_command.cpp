@@ -146,8 +146,7 @@ int trainCommand(const CommonOptions& common, const TrainOptions& o) {
   std::printf("wrote %s, %s, %s\n", outcome.policy_path.c_str(), outcome.checkpoint_path.c_str(),
               outcome.log_path.c_str());
   // The curves beside the log; a plotting failure loses nothing trained.
-  const std::string curves =
-      (std::filesystem::path(outcome.log_path).parent_path() / "train_curves.png").string();
+  const std::string curves = trainingCurvesPathFor(outcome.policy_path);
   try {
     render::plot::plotTrainingCurves(render::plot::readTrainingLog(outcome.log_path), scenario.platform.name,
                                      std::filesystem::path(outcome.policy_path).stem().string(), curves);
@@ -164,8 +163,8 @@ Subcommand declareTrain(CLI::App& app, const CommonOptions& common) {
   auto o = std::make_shared<TrainOptions>();
   CLI::App* sub = app.add_subcommand("train", "train a policy with PPO as a scenario's <training> element says");
   sub->add_option("file", o->file, "training file: a scenario with <environment> and <training>")->required();
-  sub->add_option("--out", o->out, "the policy file to write; its checkpoint (STEM.checkpoint.json) and "
-                                   "train_log.csv go beside it")
+  sub->add_option("--out", o->out, "the policy file to write; its checkpoint (STEM.checkpoint.json), its "
+                                   "log (STEM.train_log.csv) and curves (STEM.train_curves.png) go beside it")
       ->required();
   sub->add_option("--jobs,-j", o->jobs, "worker threads, one World each (default: one per core); the result does not "
                                      "depend on it")

@@ -159,15 +159,27 @@ TEST(PronkTrain, TwoIterationsWriteAPolicyThatPronkRunTakes) {
   EXPECT_EQ(policy["provenance"]["validation"]["iteration"], 2);
   EXPECT_EQ(policy["provenance"]["validation"]["count"], 3);
 
-  // train_log.csv: the header and rows 0 (the start's validation), 1 and 2.
-  std::istringstream log(readText(dir + "/train_log.csv"));
+  // policy.train_log.csv: the header and rows 0 (the start's validation), 1 and 2.
+  std::istringstream log(readText(dir + "/policy.train_log.csv"));
   std::string line;
   std::vector<std::string> lines;
   while (std::getline(log, line)) lines.push_back(line);
-  ASSERT_EQ(lines.size(), 4u) << readText(dir + "/train_log.csv");
+  ASSERT_EQ(lines.size(), 4u) << readText(dir + "/policy.train_log.csv");
   EXPECT_EQ(lines[0].rfind("iteration,iterations,jumps,batch_jumps,", 0), 0u);
   EXPECT_EQ(lines[1].rfind("0,2,0,", 0), 0u);
   EXPECT_EQ(lines[3].rfind("2,2,16,8,", 0), 0u);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/policy.train_curves.png")) << t.output;
+  // A second run into the same folder keeps its own log; pronk plot names a log's
+  // curves and their title after its policy.
+  const std::string first_log = readText(dir + "/policy.train_log.csv");
+  ASSERT_EQ(pronk("train " + kTinyTraining + " --iterations 1 --out " + dir + "/other.json --jobs 2").status, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/other.train_log.csv"));
+  EXPECT_EQ(readText(dir + "/policy.train_log.csv"), first_log);
+  std::filesystem::remove(dir + "/policy.train_curves.png");
+  const Outcome plot = pronk("plot " + dir + "/policy.train_log.csv");
+  ASSERT_EQ(plot.status, 0) << plot.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/policy.train_curves.png")) << plot.output;
+  EXPECT_NE(readText(dir + "/policy.train_curves.gp").find("policy"), std::string::npos);
   // Every penalty the jump environment declares has its column, after their sum.
   EXPECT_NE(lines[0].find(",eta_s,penalty_sum_mean,"), std::string::npos) << lines[0];
   for (const char* p : {"penalty_touchdown_bounce", "penalty_lift_off_orientation", "penalty_torque_saturation"}) {
@@ -238,7 +250,7 @@ TEST(PronkTrain, AimCorrectionWithHindsightResumesBitForBit) {
   EXPECT_EQ(ca["hindsight"]["actions"].size(), pairs.size());
   EXPECT_NE(policy["layers"].back()["bias"], json(std::vector<double>(6, 0.0))) << "the hindsight fit changed nothing";
   // The log has the hindsight columns, and PPO's actor stood still: the std is the file's.
-  const std::string log = readText(whole + "/train_log.csv");
+  const std::string log = readText(whole + "/p.train_log.csv");
   EXPECT_NE(log.find(",hindsight_pairs,hindsight_added,hindsight_loss,"), std::string::npos);
   EXPECT_NE(policy["action_log_std"], json()) << policy.dump().substr(0, 400);
 
@@ -257,7 +269,7 @@ TEST(PronkTrain, OnRealBoxesEveryCaseHasRoomForItsEdge) {
   const std::string dir = outDir("train_edges");
   const Outcome o = pronk("train " + kTinyEdgesTraining + " --jobs 2 --out " + dir + "/p.json");
   ASSERT_EQ(o.status, 0) << o.output;
-  std::istringstream log(readText(dir + "/train_log.csv"));
+  std::istringstream log(readText(dir + "/p.train_log.csv"));
   std::string header, row, last;
   std::getline(log, header);
   while (std::getline(log, row)) last = row;
@@ -316,7 +328,7 @@ TEST(PronkTrain, OversamplingDrawsFailedAndRefusedTargetsAgain) {
     EXPECT_LE(t[0].get<double>(), 1.8);
   }
   // The log's oversampled column: none in the first batch (nothing failed yet), half of the later ones.
-  const std::string log = readText(whole + "/train_log.csv");
+  const std::string log = readText(whole + "/p.train_log.csv");
   std::istringstream lines(log);
   std::string header, row;
   std::getline(lines, header);

@@ -129,6 +129,10 @@ using TrainingProgress = std::function<void(const TrainingIteration& row)>;
 
 // The checkpoint's path beside a policy file: DIR/STEM.checkpoint.json.
 std::string checkpointPathFor(const std::string& policy_path);
+// The training log's and the curves' paths beside it: DIR/STEM.train_log.csv and
+// DIR/STEM.train_curves.png, so that runs into one folder keep their own.
+std::string trainingLogPathFor(const std::string& policy_path);
+std::string trainingCurvesPathFor(const std::string& policy_path);
 
 // Trains a policy for `scenario`'s environment as its <training> says (throws
 // InputError without one). `on_row` is called on the calling thread after

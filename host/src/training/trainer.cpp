@@ -254,7 +254,7 @@ class Trainer {
     setup.policy = explorationPolicy(state_);
     paths_.policy = options.policy_path;
     paths_.checkpoint = checkpointPathFor(options.policy_path);
-    paths_.log = (fs::path(options.policy_path).parent_path() / "train_log.csv").string();
+    paths_.log = trainingLogPathFor(options.policy_path);
     // Under mpirun only rank 0 reads the checkpoint: the others get the policy with each round.
     if (!options.resume.empty() && Communicator::world().root()) {
       resume(options.resume);
@@ -863,9 +863,17 @@ class Trainer {
 
 }  // namespace
 
-std::string checkpointPathFor(const std::string& policy_path) {
+namespace {
+std::string besidePolicy(const std::string& policy_path, const char* suffix) {
   const fs::path p(policy_path);
-  return (p.parent_path() / (p.stem().string() + ".checkpoint.json")).string();
+  return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+}  // namespace
+
+std::string checkpointPathFor(const std::string& policy_path) { return besidePolicy(policy_path, ".checkpoint.json"); }
+std::string trainingLogPathFor(const std::string& policy_path) { return besidePolicy(policy_path, ".train_log.csv"); }
+std::string trainingCurvesPathFor(const std::string& policy_path) {
+  return besidePolicy(policy_path, ".train_curves.png");
 }
 
 TrainingOutcome trainPolicy(const Scenario& scenario, const PluginRegistry& registry, const TrainingRunOptions& options,
