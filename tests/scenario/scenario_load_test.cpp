@@ -184,8 +184,8 @@ TEST(Training, ShippedTrainingFilesCoverThePapersRegion) {
     const Scenario s = loadScenario((kSource / "scenarios" / "train" / (robot + "_omni.xml")).string());
     ASSERT_TRUE(s.training.has_value());
     ASSERT_TRUE(s.environment.has_value());
-    // The Go1's up and down targets on real boxes, the Aliengo's on the paper's test terrain.
-    EXPECT_EQ(s.step_platforms, robot == "go1" ? pronk::StepPlatforms::edge : pronk::StepPlatforms::apex);
+    // Up and down targets on real boxes.
+    EXPECT_EQ(s.step_platforms, pronk::StepPlatforms::edge);
     const pronk::TrainingSpec& t = *s.training;
     EXPECT_EQ(t.x.min, -0.6);
     EXPECT_EQ(t.x.max, 1.2);
