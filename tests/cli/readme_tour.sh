@@ -44,6 +44,14 @@ while IFS= read -r line; do
   fi
 done < tour.txt
 
+# What the tour writes goes under out/ (ignored by git): nothing else is left
+# beside the links to the source and this script's own list.
+left=$(ls -A | grep -v -x -e out -e scenarios -e assets -e tour.txt)
+if [ -n "$left" ]; then
+  echo "the tour left files outside out/: $(echo $left)"
+  failed=$((failed + 1))
+fi
+
 if [ "$failed" -ne 0 ]; then
   echo "$failed of $count tour commands did not end as the README says"
   exit 1
