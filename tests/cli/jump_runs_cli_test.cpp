@@ -91,7 +91,15 @@ TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
   EXPECT_NEAR(detected, planned, 0.02);
   EXPECT_GT(jump["events"]["touchdown"].get<double>(), detected);
   EXPECT_GT(jump["reward"].get<double>(), 0.0);
-  EXPECT_TRUE(std::filesystem::exists(dir + "/results.csv"));
+  // results.csv takes pronk eval's jumps.csv names and units (angles in degrees).
+  std::ifstream csv(dir + "/results.csv");
+  std::string header, row;
+  ASSERT_TRUE(std::getline(csv, header) && std::getline(csv, row));
+  EXPECT_EQ(header.rfind("case,target_x,target_y,target_z,target_yaw_deg,landed_x,landed_y,landed_z,landed_yaw_deg,"
+                         "error_xy,landed_height,error,error_yaw_deg,",
+                         0),
+            0u)
+      << header;
   EXPECT_EQ(jump["trace"], "jump-000.csv");
   EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/jump-000.csv"));
 }

@@ -239,8 +239,9 @@ void JumpResultsFiles::add(const EpisodeRecord& r, const JumpOutcome& o, const s
 
   auto ev = [&](const char* name) { return csvCell(event(trace, name) ? event(trace, name)->time : NAN); };
   std::string row = csvText(r.episode.label) + ',';
-  for (double v : {t.x, t.y, t.z, t.yaw, l.displacement.x(), l.displacement.y(), l.displacement.z(), l.yaw, l.error_xy,
-                   l.height, l.error, l.error_yaw * kDeg}) {
+  // pronk eval's jumps.csv names and units: angles in degrees.
+  for (double v : {t.x, t.y, t.z, t.yaw * kDeg, l.displacement.x(), l.displacement.y(), l.displacement.z(),
+                   l.yaw * kDeg, l.error_xy, l.height, l.error, l.error_yaw * kDeg}) {
     row += csvCell(v) + ',';
   }
   row += o.status + ',' + csvCell(r.result.reward) + ',' + ev("lift_off") + ',' + ev("touchdown") + ',' + ev("at_rest") + ',';
@@ -254,7 +255,8 @@ void JumpResultsFiles::write(const std::string& dir) const {
   const nlohmann::json document = {{"format", "pronk-results"}, {"version", 2}, {"run", run_}, {"jumps", json_}};
   replaceFileAtomically((fs::path(dir) / "results.json").string(), document.dump(2) + "\n", "results file");
   std::string csv =
-      "case,target_x,target_y,target_z,target_yaw,landing_x,landing_y,landing_z,landing_yaw,error_xy,landed_height,error,"
+      "case,target_x,target_y,target_z,target_yaw_deg,landed_x,landed_y,landed_z,landed_yaw_deg,error_xy,landed_height,"
+      "error,"
       "error_yaw_deg,"
       "status,reward,lift_off,touchdown,at_rest,";
   for (const MetricSpec* spec : tableColumns(schema_)) csv += spec->name + ',';
