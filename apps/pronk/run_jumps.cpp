@@ -11,6 +11,8 @@
 #include <iostream>
 #include <memory>
 #include <thread>
+#include <ctime>
+#include <unistd.h>
 #include <Eigen/Geometry>
 
 #include "progress.h"
@@ -24,6 +26,23 @@
 
 namespace pronk::cli {
 namespace {
+
+// When the run started, as ISO 8601 in UTC, and the machine it ran on: what a
+// results file needs to be told apart from another run of the same command.
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+std::string hostName() {
+  char name[256] = "";
+  if (gethostname(name, sizeof name - 1) != 0) return "";
+  return name;
+}
 
 namespace fs = std::filesystem;
 
@@ -108,6 +127,26 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
                                {"cases", cases.size()}};
   for (const SweepSpec& sweep : scenario.sweeps)
     if (sweep.name == options.sweep && sweep.kind == SweepSpec::Kind::Random) provenance["seed"] = sweep.seed;
+  provenance["scenario_fingerprint"] = fileFingerprint(options.scenario);
+  provenance["started_utc"] = utcNow();
+  provenance["host"] = hostName();
+  const SimSpec& sim = scenario.sim;
+  const ContactSpec& c = sim.contact;
+  provenance["simulation"] = {{"control_rate_hz", sim.control_rate},
+                              {"integrator", sim.integrator},
+                              {"step_s", sim.step},
+                              {"accuracy", sim.accuracy},
+                              {"flight_max_step_s", sim.flight_max_step},
+                              {"gravity", {sim.gravity[0], sim.gravity[1], sim.gravity[2]}},
+                              {"contact",
+                               {{"model", c.model},
+                                {"stiffness", c.stiffness},
+                                {"dissipation", c.dissipation},
+                                {"mu_static", c.mu_static},
+                                {"mu_dynamic", c.mu_dynamic},
+                                {"tangential_stiffness", c.tangential_stiffness},
+                                {"tangential_damping", c.tangential_damping},
+                                {"implicit", c.implicit}}}};
   nlohmann::json parameters = nlohmann::json::object();  // every declared parameter, as the environment got it
   for (int32_t i = 0; i < setup.params.size(); ++i) parameters[setup.params.data()[i].name] = setup.params.data()[i].value;
   provenance["parameters"] = parameters;

@@ -100,6 +100,15 @@ TEST(JumpRuns, Go1ForwardLandsWithinItsToleranceAndWritesEveryResult) {
                          0),
             0u)
       << header;
+  // What the run was: the scenario file's fingerprint, when and where, the simulation and contact settings.
+  const nlohmann::json run = runOf(dir);
+  EXPECT_EQ(run["scenario_fingerprint"].get<std::string>().size(), 16u) << run.dump();
+  EXPECT_TRUE(std::regex_match(run["started_utc"].get<std::string>(),
+                               std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
+      << run.dump();
+  EXPECT_TRUE(run["host"].is_string());
+  EXPECT_DOUBLE_EQ(run["simulation"]["step_s"].get<double>(), 2e-4) << run.dump();
+  EXPECT_EQ(run["simulation"]["contact"]["model"], "stiction");
   EXPECT_EQ(jump["trace"], "jump-000.csv");
   EXPECT_TRUE(std::filesystem::is_regular_file(dir + "/jump-000.csv"));
 }
