@@ -46,6 +46,30 @@ TEST(Cli, ShippedScenariosValidate) {
   EXPECT_NE(o.output.find("part: go1"), std::string::npos) << o.output;
 }
 
+// The development samples of tests/dev/ (lab variants, failure sets, seeded
+// samples): kept out of scenarios/, and valid.
+TEST(Cli, DevelopmentSamplesValidate) {
+  std::string files;
+  int count = 0;
+  for (const char* robot : {"go1", "aliengo"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(source(std::string("tests/dev/") + robot))) {
+      if (entry.path().extension() != ".xml") continue;
+      files += " " + entry.path().string();
+      ++count;
+    }
+  }
+  EXPECT_GE(count, 20);
+  const Outcome o = pronk("validate" + files);
+  EXPECT_EQ(o.status, 0) << o.output;
+  for (const char* robot : {"go1", "aliengo"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(source(std::string("scenarios/") + robot))) {
+      const std::string name = entry.path().filename().string();
+      EXPECT_EQ(name.find("_dev"), std::string::npos) << "a development sample among the user scenarios: " << name;
+      EXPECT_NE(name.rfind("dev_", 0), 0u) << "a development sample among the user scenarios: " << name;
+    }
+  }
+}
+
 TEST(Cli, Go1StandsWhereForwardKinematicsPutsIt) {
   const auto j = runAndRead(source("scenarios/go1/stand.xml"), "go1_stand", 0);
   EXPECT_FALSE(j.at("failed").get<bool>());

@@ -908,7 +908,7 @@ TEST(JumpRuns, DcMotorKeepsEveryTorqueOnItsTorqueSpeedLine) {
   // file's 5 cm and 12 deg (measured 3.6 cm, 6.5 deg; docs/results.md).
   std::string box_dir, dc_dir;
   const nlohmann::json box = onlyJump("scenarios/go1/diagonal.xml", "jump_diagonal_effort_box", &box_dir);
-  const nlohmann::json dc = onlyJump("scenarios/go1/diagonal_dc_motor.xml", "jump_diagonal_dc_motor", &dc_dir);
+  const nlohmann::json dc = onlyJump("tests/dev/go1/diagonal_dc_motor.xml", "jump_diagonal_dc_motor", &dc_dir);
   ASSERT_FALSE(box.is_null() || dc.is_null());
   EXPECT_GT(worstExcessOverGo1DcMotors(box_dir + "/" + box["trace"].get<std::string>()), 1.0);
   EXPECT_LT(worstExcessOverGo1DcMotors(dc_dir + "/" + dc["trace"].get<std::string>()), 1e-4);
