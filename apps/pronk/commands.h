@@ -40,6 +40,10 @@ inline CLI::Validator finiteIn(double lo, double hi, bool lo_open = false) {
           return "'" + text + "' is not a number";
         }
         if (!std::isfinite(v)) return "'" + text + "' is not a finite number";
+        // Decimal notation only: std::stod also reads " 2" and hexadecimal "0x1p3".
+        if (text.find_first_not_of("0123456789+-.eE") != std::string::npos) {
+          return "'" + text + "' is not a decimal number";
+        }
         if (v > hi || v < lo || (lo_open && v == lo)) {
           char range[96];
           std::snprintf(range, sizeof range, "%s%g, %g]", lo_open ? "(" : "[", lo, hi);
@@ -51,6 +55,25 @@ inline CLI::Validator finiteIn(double lo, double hi, bool lo_open = false) {
 }
 inline const CLI::Validator kNonEmpty(
     [](std::string& text) { return text.empty() ? std::string("an empty value") : std::string(); }, "TEXT");
+
+// Whole numbers as people write them: decimal digits with an optional sign (CLI11
+// alone reads "0x10" as 16 and lets " 2" through).
+inline const CLI::Validator kDecimal(
+    [](std::string& text) {
+      const size_t start = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+      const bool digits = text.size() > start && text.find_first_not_of("0123456789", start) == std::string::npos;
+      return digits ? std::string() : "'" + text + "' is not a decimal whole number";
+    },
+    "");
+
+// Every option of `app` and its subcommands that takes a whole number gets kDecimal.
+inline void requireDecimalIntegers(CLI::App& app) {
+  for (CLI::Option* opt : app.get_options()) {
+    const std::string type = opt->get_type_name();
+    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) opt->check(kDecimal);
+  }
+  for (CLI::App* sub : app.get_subcommands({})) requireDecimalIntegers(*sub);
+}
 
 // A declared subcommand and what runs it once the command line is parsed.
 struct Subcommand {

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
                                             declareMan(app, common)};
 
   tidyHelp(app);
+  requireDecimalIntegers(app);
 
   try {
     app.parse(argc, argv);

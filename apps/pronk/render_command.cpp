@@ -195,7 +195,7 @@ Subcommand declareRender(CLI::App& app, const CommonOptions& common) {
                   "(default: the scenario's <environment policy>)")
       ->check(kNonEmpty);
   sub->add_option("--duration", o->duration, "episode length in s")->check(finiteIn(0, kMaxEpisodeSeconds, true));
-  sub->add_option("--speed", o->speed, "playback speed, e.g. 0.25 (default: the scenario's <render speed>, else 1)")->check(finiteIn(0, 1e3, true));
+  sub->add_option("--speed", o->speed, "playback speed, e.g. 0.25 (default: the scenario's <render speed>, else 1)")->check(finiteIn(0.01, 100));
   sub->add_option("--fps", o->fps, "frames per second (default: the scenario's <render fps>, else 30)")->check(finiteIn(1.0, 240.0));
   sub->add_option("--size", o->size, "WIDTHxHEIGHT, both even (default: the scenario's <render>, else 1280x720)")->check(kNonEmpty);
   sub->add_option("--still", o->stills, "also save the frame at this simulated time as a PNG (repeatable)")

@@ -169,7 +169,7 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
       ->expected(0, 1)
       ->check(kNonEmpty);
   sub->add_option("--speed", o->speed, "video playback speed, e.g. 0.25 for slow motion (default: the scenario's <render speed>, else 1)")
-      ->check(finiteIn(0, 1e3, true));
+      ->check(finiteIn(0.01, 100));
   sub->add_option("--fps", o->fps, "video frames per second (default: the scenario's <render fps>, else 30)")->check(finiteIn(1.0, 240.0));
   sub->add_option("--size", o->size, "video size WIDTHxHEIGHT, both even (default: the scenario's <render>, else 1280x720)")->check(kNonEmpty);
   sub->add_option("--still", o->stills, "also save the video frame at this simulated time (s) as a PNG "

@@ -376,6 +376,13 @@ TEST(Cli, NanEmptyAndHugeFlagValuesAreUsageErrors) {
       {"--size ''", "--size: an empty value"},
       {"--out ''", "--out: an empty value"},
       {"--sweep ''", "--sweep: an empty value"},
+      // Whole numbers in decimal only, and a playback speed that makes a video of sane length.
+      {"--jobs 0x2", "--jobs: '0x2' is not a decimal whole number"},
+      {"--jobs ' 2'", "--jobs: ' 2' is not a decimal whole number"},
+      {"--sweep region --seed 0x10", "--seed: '0x10' is not a decimal whole number"},
+      {"--speed 1e-9 --video x.mp4", "--speed: 1e-9 is not in [0.01, 100]"},
+      {"--duration ' 1.5'", "--duration: ' 1.5' is not a decimal number"},
+      {"--duration 0x1p0", "--duration: '0x1p0' is not a decimal number"},
   };
   for (const auto& [flags, message] : cases) {
     const Outcome o = pronk(run + flags);
