@@ -22,7 +22,9 @@ std::string metavariable(const std::string& full) {
   return parts.front();
 }
 
-void tidy(CLI::App& app) {
+}  // namespace
+
+void tidyHelp(CLI::App& app) {
   for (CLI::Option* opt : app.get_options()) {
     if (opt->get_type_size() == 0) continue;  // a flag
     const std::string name = metavariable(opt->get_type_name());
@@ -35,8 +37,10 @@ void tidy(CLI::App& app) {
     }
     opt->type_name(name);
   }
-  for (CLI::App* sub : app.get_subcommands({})) tidy(*sub);
+  for (CLI::App* sub : app.get_subcommands({})) tidyHelp(*sub);
 }
+
+namespace {
 
 size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<size_t> row(b.size() + 1);
@@ -54,8 +58,6 @@ size_t editDistance(const std::string& a, const std::string& b) {
 }
 
 }  // namespace
-
-void tidyHelp(CLI::App& app) { tidy(app); }
 
 std::string closestSubcommand(const CLI::App& app, const std::string& word) {
   std::string best, prefixed;

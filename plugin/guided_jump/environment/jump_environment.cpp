@@ -151,6 +151,20 @@ JumpEnvironment::JumpEnvironment(const pronk_host_api* host, const EnvironmentSe
     limits_.velocity_max(j) = std::isfinite(v) && v > 0 ? v : 1e9;
   }
   if (host->foot_radius) settings_.reward.foot_radius = host->foot_radius(host->host, 0);
+  // The landing extension the flight phase would derive, resolved once: the
+  // edge model and the controller take the same number.
+  FlightSettings& flight = settings_.jump.flight;
+  if (flight.extension < 0.0) {
+    flight.extension = legs_ && feet_ == jump::kLegCount
+                           ? FlightPhase::derivedExtension(*legs_, settings_.jump.hold.stance,
+                                                           joint_motors_[2].effort, mass_, gravity_.norm())
+                           : 0.0;
+  }
+}
+
+jump::LandingStop JumpEnvironment::landingStop() const {
+  const LandingSettings landing = settings_.jump.landing;
+  return [landing](const Eigen::Vector3d& v) { return LandingPhase::landingStop(landing, v); };
 }
 
 void JumpEnvironment::reset(const double* task, int32_t task_size, const pronk_robot_state& state, double* observation) {
@@ -205,8 +219,7 @@ jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards,
   terrain.tuck_time_s = FlightPhase::kBlendTime;
   terrain.descent_s = FlightPhase::kBlendTime + FlightPhase::kExtensionLead;
   terrain.descent_blend_s = FlightPhase::kBlendTime;
-  const LandingSettings& landing = settings_.jump.landing;
-  terrain.landing_stop = [landing](const Eigen::Vector3d& v) { return LandingPhase::landingStop(landing, v); };
+  terrain.landing_stop = landingStop();
   if (terrain.edges.empty() || !legs_) return terrain;
   // The hips, and the knees and feet at the flight's tuck and in the landing
   // pose, about the CoM. The hips are the motors, balls of about a ninth of a
@@ -216,10 +229,7 @@ jump::TerrainEdges JumpEnvironment::terrainEdges(const Eigen::Vector2d& towards,
   const Eigen::Vector3d q_tuck(tuck[0], tuck[1], tuck[2]);
   const std::array<double, 3>& stance = settings_.jump.hold.stance;
   const Eigen::Vector3d q_stance(stance[0], stance[1], stance[2]);
-  double extension = settings_.jump.flight.extension;
-  if (extension < 0.0) {
-    extension = FlightPhase::derivedExtension(*legs_, stance, joint_motors_[2].effort, mass_, gravity_.norm());
-  }
+  const double extension = settings_.jump.flight.extension;  // resolved by the constructor
   terrain.landing_extension_m = extension;
   const double leg_radius = settings_.reward.foot_radius;
   const double hip_radius = kHipRadiusPerLeg * jump::meanLegLength(*legs_);
@@ -254,9 +264,7 @@ std::vector<double> JumpEnvironment::priorAction(const double* observation, std:
   target.yaw_rad = observation[3];
   config.terrain = terrainEdges(target.displacement.head<2>(), target.yaw_rad);
   // Aimed short by where the controller's landing will stop the CoM.
-  const LandingSettings& landing = settings_.jump.landing;
-  const jump::PlannedJump plan = jump::planPriorJump(
-      target, config, [&landing](const Eigen::Vector3d& v) { return LandingPhase::landingStop(landing, v); });
+  const jump::PlannedJump plan = jump::planPriorJump(target, config, landingStop());
   if (!plan.feasible && infeasible) *infeasible = "no feasible jump: " + plan.reason;
   const jump::ActionVector raw = jump::unmapAction(plan.action, settings_.ranges);
   std::vector<double> action(raw.begin(), raw.end());

@@ -109,6 +109,9 @@ class JumpEnvironment {
   // and the safety filter checks.
   jump::TerrainEdges terrainEdges(const Eigen::Vector2d& towards, double turn) const;
 
+  // Where the controller's landing stops the CoM beyond its touchdown point.
+  jump::LandingStop landingStop() const;
+
   jump::BodyState bodyState(const pronk_robot_state& s, const StartFrame& S) const;
 
   void onPhaseChange(JumpPhase phase, const pronk_robot_state& s);

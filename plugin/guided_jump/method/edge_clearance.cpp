@@ -96,7 +96,7 @@ EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, co
   // swing's end to touchdown.
   const auto landed = [&](double t) { return smoothstep01((t - descent) / terrain.descent_blend_s); };
   const auto at = [&](const TerrainEdges::BodyPoint& p, double t) {
-    const double w = t > descent ? landed(t) : 0.0;
+    const double w = t > descent ? landed(t) : 0.0;  // a 0 s swing: the landing pose at once
     return pointAt(p.at + w * (p.landing - p.at), p.radius, origin, *u, flight.position(t),
                    T > 0.0 ? terrain.turn_rad * t / T : 0.0, w * ahead);
   };
@@ -113,10 +113,11 @@ EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, co
       return i <= kFlightSpans ? t_first + (t_descent - t_first) * i / kFlightSpans
                                : t_descent + (T - t_descent) * (i - kFlightSpans) / kDescentSpans;
     };
-    auto [a0, z0] = at(p, t_first);
+    const auto [a_first, z_first] = at(p, t_first);
     for (const TerrainEdges::Edge& e : terrain.edges) {
-      if (overTop(e, a0, reach) > 0.0) record(terrain, origin, e, z0, &pass);
+      if (overTop(e, a_first, reach) > 0.0) record(terrain, origin, e, z_first, &pass);
     }
+    double a0 = a_first;
     for (int i = 0; i < kFlightSpans + kDescentSpans; ++i) {
       const double t0 = time(i), t1 = time(i + 1);
       const auto [a1, z1] = at(p, t1);
@@ -127,7 +128,6 @@ EdgePass edgePass(const TerrainEdges& terrain, const Eigen::Vector3d& origin, co
         if ((s0 > 0.0) != (s1 > 0.0)) record(terrain, origin, e, at(p, t0 + (t1 - t0) * s0 / (s0 - s1)).second, &pass);
       }
       a0 = a1;
-      z0 = z1;
     }
   }
   return pass;
