@@ -248,6 +248,7 @@ void EpisodeVideo::add(const Trace& trace, const RobotDescription& robot, const 
   }
 
   for (int i = 0; i < frames; ++i) {
+    if (options.stop && options.stop->load()) break;
     const double t = std::min(sim_duration, i / options.fps * options.speed);
     const TraceSample& s = sampleAt(trace, t);
     FrameState frame{s.body_poses, s.foot_position, s.foot_in_contact};

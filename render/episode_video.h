@@ -5,6 +5,7 @@
 // a title card between the jumps of a multi-jump video (docs/video.md).
 #pragma once
 
+#include <atomic>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -26,6 +27,9 @@ struct VideoOptions {
   Eigen::Vector3d camera_position{0, -2, 0.6}, camera_look_at{0.3, 0, 0.2};  // fixed
   double fovy_deg = 45;
   std::vector<double> stills;  // simulated times (s) to also save as PNG next to the video
+  // When it becomes true (a signal handler's flag) no further frame is added:
+  // finish() closes a playable video of the frames so far.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct VideoSummary {

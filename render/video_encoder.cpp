@@ -10,8 +10,10 @@ extern "C" {
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "pronk/error.h"
+#include "pronk/file_io.h"
 
 namespace pronk::render {
 namespace {
@@ -25,7 +27,8 @@ std::string avError(int code) {
 }  // namespace
 
 struct VideoEncoder::Impl {
-  std::string path;
+  std::string path;     // the video, once whole
+  std::string partial;  // PATH.partial, written until then
   int width = 0, height = 0;
   AVFormatContext* format = nullptr;
   AVCodecContext* codec = nullptr;
@@ -66,6 +69,7 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
   av_log_set_level(AV_LOG_ERROR);  // x264 prints its statistics otherwise
   Impl& v = *impl_;
   v.path = path;
+  v.partial = path + ".partial";
   v.width = width;
   v.height = height;
   if (width <= 0 || height <= 0 || width % 2 || height % 2) {
@@ -75,6 +79,8 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
   if (!(fps > 0) || !std::isfinite(fps) || fps > 1000) {
     throw Error(path + ": video frame rate " + std::to_string(fps) + " must be in (0, 1000]");
   }
+  checkReplaceable(path, "video");
+  checkReplaceable(v.partial, "video");
   try {
     if (avformat_alloc_output_context2(&v.format, nullptr, "mp4", path.c_str()) < 0 || !v.format) {
       throw Error(path + ": cannot create an MP4 container");
@@ -99,7 +105,7 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
     if (r < 0) throw Error(path + ": cannot open the H.264 encoder: " + avError(r));
     avcodec_parameters_from_context(v.stream->codecpar, v.codec);
     v.stream->time_base = v.codec->time_base;
-    r = avio_open(&v.format->pb, path.c_str(), AVIO_FLAG_WRITE);
+    r = avio_open(&v.format->pb, v.partial.c_str(), AVIO_FLAG_WRITE);
     if (r < 0) throw Error(path + ": cannot open for writing: " + avError(r));
     r = avformat_write_header(v.format, nullptr);
     if (r < 0) throw Error(path + ": cannot write the MP4 header: " + avError(r));
@@ -114,17 +120,14 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, doubl
     if (!v.sws) throw Error(path + ": cannot set up the colour conversion");
   } catch (...) {
     v.release();
-    std::remove(path.c_str());
+    std::remove(v.partial.c_str());
     throw;
   }
 }
 
 VideoEncoder::~VideoEncoder() {
-  try {
-    finish();
-  } catch (...) {
-  }
   impl_->release();
+  if (!impl_->finished) std::remove(impl_->partial.c_str());  // never finished: no video
 }
 
 void VideoEncoder::addFrame(const std::vector<uint8_t>& rgba) {
@@ -143,9 +146,33 @@ void VideoEncoder::addFrame(const std::vector<uint8_t>& rgba) {
 void VideoEncoder::finish() {
   Impl& v = *impl_;
   if (v.finished || !v.format) return;
+  std::string failure;
+  try {
+    v.drain(true);
+  } catch (const Error& e) {
+    failure = e.what();
+  }
+  if (failure.empty()) {
+    if (const int r = av_write_trailer(v.format); r < 0) failure = v.path + ": writing the MP4 trailer failed: " + avError(r);
+  }
+  if (failure.empty() && v.format->pb) {
+    // Buffered writes fail late (a full disk, a file-size limit): their error stays on the stream.
+    avio_flush(v.format->pb);
+    const int error = v.format->pb->error;
+    const int closed = avio_closep(&v.format->pb);
+    if (error < 0 || closed < 0) failure = v.path + ": writing the video failed: " + avError(error < 0 ? error : closed);
+  }
+  std::error_code ec;
+  if (failure.empty()) {
+    std::filesystem::rename(v.partial, v.path, ec);
+    if (ec) failure = v.path + ": cannot replace the video: " + ec.message();
+  }
+  if (!failure.empty()) {
+    v.release();
+    std::filesystem::remove(v.partial, ec);
+    throw Error(failure + " (no video written)");
+  }
   v.finished = true;
-  v.drain(true);
-  av_write_trailer(v.format);
 }
 
 void writePng(const std::string& path, const std::vector<uint8_t>& rgba, int width, int height) {
@@ -170,11 +197,11 @@ void writePng(const std::string& path, const std::vector<uint8_t>& rgba, int wid
     if (avcodec_send_frame(context, frame) < 0 || avcodec_receive_packet(context, packet) < 0) {
       failure = "PNG encoding failed";
     } else {
-      FILE* out = std::fopen(path.c_str(), "wb");
-      if (!out) failure = "cannot open for writing";
-      else {
-        if (std::fwrite(packet->data, 1, size_t(packet->size), out) != size_t(packet->size)) failure = "write failed";
-        std::fclose(out);
+      try {
+        replaceFileAtomically(path, std::string(reinterpret_cast<const char*>(packet->data), size_t(packet->size)),
+                              "still");
+      } catch (const Error& e) {
+        failure = e.what();
       }
     }
   }

@@ -11,17 +11,21 @@ namespace pronk::render {
 
 class VideoEncoder {
  public:
-  // Opens `path` for writing. Throws pronk::Error naming the path for an
-  // unwritable file, odd or non-positive sizes, a non-positive fps, or a
-  // missing H.264 encoder.
+  // Opens PATH.partial for writing; finish() renames it over `path`. Throws
+  // pronk::Error naming the path for an unwritable file, something other than
+  // a regular file at `path`, odd or non-positive sizes, a non-positive fps, or
+  // a missing H.264 encoder.
   VideoEncoder(const std::string& path, int width, int height, double fps);
+  // Without finish(): PATH.partial is removed and `path` left as it was.
   ~VideoEncoder();
   VideoEncoder(const VideoEncoder&) = delete;
   VideoEncoder& operator=(const VideoEncoder&) = delete;
 
   // One RGBA frame, rows top to bottom.
   void addFrame(const std::vector<uint8_t>& rgba);
-  // Flushes the encoder and writes the trailer; called by the destructor too.
+  // Flushes the encoder, writes the trailer and renames the whole video into
+  // place. Throws Error when any write failed (a full disk, a file-size limit):
+  // then no video is left, the partial file removed.
   void finish();
   int frames() const { return frames_; }
 

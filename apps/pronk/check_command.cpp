@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "evaluation_sets.h"
 #include "progress.h"
 #include "pronk/evaluation.h"
@@ -48,7 +49,12 @@ int runCheck(const CommonOptions& common, const CheckOptions& o) {
     addSets(all, file, s, expectedSets(s));
     files.push_back({file, s, std::vector<SetToRun>(all.begin() + static_cast<std::ptrdiff_t>(first), all.end())});
   }
-  if (!o.junit.empty()) checkWritable(o.junit);
+  if (!o.junit.empty()) {
+    checkWritableFile(o.junit, "--junit");
+    std::vector<NamedInput> inputs = {{o.policy, "--policy"}};
+    for (const std::string& f : o.files) inputs.push_back({f, "FILE"});
+    checkNotAnInput(o.junit, "--junit", inputs);
+  }
 
   const StopOnSignal stop;
   std::vector<CheckedFile> checked;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ enum ExitCode : int {
   kUsageError = 2,       // bad flags or arguments
   kInputError = 3,       // a scenario, URDF or plugin that cannot be used
   kEpisodeFailed = 4,    // the run completed but an episode failed (non-foot contact, divergence ...)
+};
+
+// A flag or argument refused after parsing (exit 2); its message names the flag.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct CommonOptions {

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "progress.h"
 #include "pronk/communicator.h"
 #include "pronk/evaluation.h"
@@ -93,16 +94,20 @@ void writeSummary(const EvalOptions& o, const std::vector<SetResult>& results) {
 // in a collective.
 template <class Step>
 void onRootForAll(const Communicator& comm, Step step) {
-  std::string error;
+  std::string error;  // "R" + message: an --out of another run refused; "E" + message: any other error
   if (comm.root()) {
     try {
       step();
+    } catch (const ResumeRefused& e) {
+      error = std::string("R") + e.what();
     } catch (const Error& e) {
-      error = e.what();
+      error = std::string("E") + e.what();
     }
   }
   error = comm.broadcast(error);
-  if (!error.empty()) throw SharedError(error);
+  if (error.empty()) return;
+  if (error[0] == 'R') throw ResumeRefused(error.substr(1));
+  throw SharedError(error.substr(1));
 }
 
 // The cases of `todo` over the ranks of an MPI run: in rounds of 16 cases
@@ -225,6 +230,7 @@ int runEval(const CommonOptions& common, const EvalOptions& o) {
   const Communicator& comm = Communicator::world();
   onRootForAll(comm, [&] {
     std::error_code ec;
+    checkOutputDirectory(o.out_dir, "--out");
     if (!o.resume && fs::exists(fs::path(o.out_dir) / "summary.json", ec)) {
       throw Error("--out " + o.out_dir + ": holds an earlier evaluation (summary.json): give --resume, or another --out");
     }
@@ -242,6 +248,8 @@ int runEval(const CommonOptions& common, const EvalOptions& o) {
     try {
       results.push_back(runSet(common, o, set, stop));
       errors = errors || !results.back().plot_error.empty();
+    } catch (const ResumeRefused&) {
+      throw;  // another run's directory: nothing of it, its summary included, is rewritten
     } catch (const Error& e) {
       // The set fails alone, with its reason; the others run.
       if (comm.root()) std::fprintf(stderr, "pronk eval: set %s: %s\n", set.name.c_str(), e.what());

@@ -45,6 +45,7 @@ std::unique_ptr<SetRollout> prepareSet(const CommonOptions& common, const SetToR
   ControllerSpec as_controller{spec.factory, spec.plugin, spec.params, spec.where};
   loadPlugins(out->registry, common.plugin_paths, &as_controller);
   RolloutSetup setup = environmentSetup(set.scenario, out->registry, {}, out->policy);
+  for (const std::string& w : setup.warnings) std::cerr << "warning: " << w << "\n";
   out->cases = set.set == "targets" ? targetCases(set.scenario) : sweepCases(set.scenario, set.set);
   RolloutOptions rollout;
   rollout.threads = std::min<int>(jobsOf(jobs), static_cast<int>(std::max<size_t>(out->cases.size(), 1)));

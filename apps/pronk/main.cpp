@@ -1,5 +1,6 @@
 // pronk: run quadruped jump scenarios on the Simbody host.
 #include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <vector>
 
@@ -8,14 +9,19 @@
 #include "pronk/communicator.h"
 #include "pronk/error.h"
 #include "pronk/plugin_abi.h"
+#include "pronk/plugin_registry.h"
 
 int main(int argc, char** argv) {
   using namespace pronk::cli;
+  // Past a file-size limit (ulimit -f) a write fails with EFBIG, and the
+  // writer's error says so; the signal would end pronk without a word.
+  std::signal(SIGXFSZ, SIG_IGN);
+  pronk::reportPluginCrashes();
   CLI::App app{"pronk: learned, precise, omnidirectional jumps of legged robots in simulation"};
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 1 internal error, 2 usage error, 3 bad input (scenario, URDF, plugin),\n"
-      "4 an episode failed (non-foot contact, divergence, controller error), 130 / 143 stopped by SIGINT / SIGTERM.");
+      "4 an episode failed (non-foot contact, divergence, controller error), 128 + N stopped by signal N: 130 SIGINT, 143 SIGTERM, 129 SIGHUP, 141 a closed stdout.");
   app.set_version_flag("--version", std::string("pronk ") + PRONK_VERSION + ", plugin ABI " +
                                         std::to_string(PRONK_ABI_MAJOR) + "." + std::to_string(PRONK_ABI_MINOR) +
                                         ", commit " + buildCommit());
@@ -74,6 +80,8 @@ int main(int argc, char** argv) {
       }
       return c.run();
     }
+  } catch (const UsageError& e) {
+    return fail(kUsageError, e.what());
   } catch (const pronk::SharedError& e) {
     // Every rank has it: rank 0 says it once and all end normally.
     if (!comm || comm->root()) std::cerr << "pronk: " << e.what() << "\n";

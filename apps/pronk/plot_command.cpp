@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "render/plot/training_plots.h"
 
 namespace pronk::cli {
@@ -29,9 +30,15 @@ std::string stemOf(const std::string& log) {
 
 int plotCommand(const PlotOptions& o) {
   namespace fs = std::filesystem;
-  const render::plot::TrainingLog log = render::plot::readTrainingLog(o.log);
   const std::string png =
       o.out.empty() ? (fs::path(o.log).parent_path() / (stemOf(o.log) + ".train_curves.png")).string() : o.out;
+  const std::string script = (fs::path(png).parent_path() / (fs::path(png).stem().string() + ".gp")).string();
+  const std::string flag = o.out.empty() ? "the curves' file" : "--out";
+  for (const auto& [path, what] : {std::pair{png, flag}, std::pair{script, flag + "'s plot script"}}) {
+    checkOutputFile(path, what);
+    checkNotAnInput(path, what, {{o.log, "LOG"}});
+  }
+  const render::plot::TrainingLog log = render::plot::readTrainingLog(o.log);
   const std::string policy = o.policy.empty() ? stemOf(o.log) : o.policy;
   std::printf("plot %s\n", render::plot::plotTrainingCurves(log, o.robot, policy, png).c_str());
   return kOk;

@@ -83,7 +83,11 @@ int pluginsCommand(const CommonOptions& common) {
   std::printf("\nbuilt-in controllers:");
   for (const std::string& n : builtinControllerNames()) std::printf(" %s", n.c_str());
   std::printf("\n");
-  return kOk;
+  // Listed, and the status says so: a broken library is skipped by the commands that do not need it.
+  for (const PluginRegistry::Skipped& s : registry.skipped()) {
+    std::fprintf(stderr, "pronk: not loaded: %s: %s\n", s.path.c_str(), s.reason.c_str());
+  }
+  return registry.skipped().empty() ? kOk : kInputError;
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "stop_signal.h"
+#include "output_paths.h"
 #include "pronk/controller_factory.h"
 #include "pronk/episode.h"
 #include "run_jumps.h"
@@ -128,8 +130,13 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
   if (!options.controller.empty()) {
     scenario.platform.controller = ControllerSpec{options.controller, "", {}, {"--controller", 0}};
   }
-  const render::VideoOptions video = videoOptions(scenario, options);
-  checkWritable(video.path);
+  render::VideoOptions video = videoOptions(scenario, options);
+  checkWritableFile(video.path, "-o");
+  // A signal ends the simulation where it is, and what was simulated is filmed;
+  // a signal while filming closes a playable video of the frames so far. The
+  // exit status says it stopped.
+  int stopped = 0;
+  checkNotAnInput(video.path, "-o", {{options.scenario, "SCENARIO"}, {options.trace, "--trace"}});
   World world(scenario);
   for (const std::string& w : world.robot().warnings) std::cerr << "warning: " << w << "\n";
   Trace trace;
@@ -169,15 +176,25 @@ int renderCommand(const CommonOptions& common, const RenderOptions& options) {
     EpisodeOptions episode;
     episode.duration = options.duration > 0 ? options.duration : scenario.sim.duration;
     episode.record_body_poses = true;
+    const StopOnSignal stop;
+    episode.stop = stop.flag();
     trace = runEpisode(world, *controller, episode).trace;
+    stopped = stop.signal();
     markers = markersFor(scenario, world, trace.samples.front());
   }
+  const StopOnSignal stop_filming;
+  video.stop = stop_filming.flag();
   const render::VideoSummary v = render::renderEpisodeVideo(trace, world.robot(), terrain ? *terrain : world.terrain(),
                                                             markers, video, &std::cerr, apex);
   for (const std::string& w : v.warnings) std::cerr << "warning: " << w << "\n";
   for (const std::string& png : v.stills) std::printf("still %s\n", png.c_str());
   std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
               v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
+  if (const int signal = stopped ? stopped : stop_filming.signal()) {
+    std::fprintf(stderr, "pronk: stopped by signal %d; the video holds what was %s\n", signal,
+                 stopped ? "simulated" : "filmed");
+    return 128 + signal;
+  }
   return kOk;
 }
 

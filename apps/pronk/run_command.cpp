@@ -8,6 +8,9 @@
 #include <Eigen/Geometry>
 
 #include "commands.h"
+#include "stop_signal.h"
+#include "pronk/file_io.h"
+#include "output_paths.h"
 #include "pronk/controller_factory.h"
 #include "run_jumps.h"
 #include "pronk/episode.h"
@@ -72,12 +75,30 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   Trace events;  // controller events are collected here and merged into the episode trace
   auto controller = makeController(scenario.platform, registry, world, &events);
 
-  const render::VideoOptions video = videoOptions(scenario, options);
-  if (!video.path.empty()) checkWritable(video.path);  // before spending time on the simulation
+  render::VideoOptions video = videoOptions(scenario, options);
+  if (!options.out_dir.empty()) checkOutputDirectory(options.out_dir, "--out");
+  if (!video.path.empty()) {  // before spending time on the simulation
+    checkWritableFile(video.path, "--video");
+    checkNotAnInput(video.path, "--video", {{options.scenario, "SCENARIO"}});
+    checkNotAmongFolderFiles(video.path, "--video", options.out_dir,
+                             [](const std::string& name) { return name == "results.json" || name == "trace.csv"; });
+  }
   EpisodeOptions episode;
   episode.duration = duration;
   episode.record_body_poses = !video.path.empty();
-  EpisodeResult result = runEpisode(world, *controller, episode);
+  // A signal ends the episode where it is; its results and its video are
+  // written as of then (a second signal ends the filming with a playable
+  // video), and the exit status says it stopped.
+  int stopped = 0;
+  EpisodeResult result;
+  {
+    const StopOnSignal stop;
+    episode.stop = stop.flag();
+    result = runEpisode(world, *controller, episode);
+    stopped = stop.signal();
+  }
+  const StopOnSignal stop_filming;
+  video.stop = stop_filming.flag();
   result.trace.events.insert(result.trace.events.begin(), events.events.begin(), events.events.end());
   std::stable_sort(result.trace.events.begin(), result.trace.events.end(),
                    [](const TraceEvent& a, const TraceEvent& b) { return a.time < b.time; });
@@ -119,7 +140,9 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
     j["run"] = {{"pronk_version", PRONK_VERSION},
                 {"git_commit", buildCommit()},
                 {"command", common.command_line},
-                {"controller_parameters", settings}};
+                {"controller_parameters", settings},
+                {"complete", !stopped}};
+    if (stopped) j["run"]["stopped_by_signal"] = stopped;
     j["scenario"] = fs::absolute(options.scenario).string();
     j["robot"] = world.robot().name;
     j["controller"] = scenario.platform.controller.factory;
@@ -135,8 +158,7 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
     j["events"] = nlohmann::json::array();
     for (const TraceEvent& e : result.trace.events) j["events"].push_back({{"time", e.time}, {"name", e.name}, {"detail", e.detail}});
     const std::string json_path = (fs::path(options.out_dir) / "results.json").string();
-    std::ofstream out(json_path);
-    if (!(out << j.dump(2) << "\n")) throw Error(json_path + ": cannot write");
+    replaceFileAtomically(json_path, j.dump(2) + "\n", "results file");
     const std::string trace_path = (fs::path(options.out_dir) / "trace.csv").string();
     writeTraceCsv(result.trace, trace_path);
     std::printf("wrote %s and %s\n", json_path.c_str(), trace_path.c_str());
@@ -149,6 +171,10 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
     for (const std::string& png : v.stills) std::printf("still %s\n", png.c_str());
     std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
                 v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
+  }
+  if (const int signal = stopped ? stopped : stop_filming.signal()) {
+    std::fprintf(stderr, "pronk: stopped by signal %d at %.3f s of the episode\n", signal, simulated);
+    return 128 + signal;
   }
   return result.failure ? kEpisodeFailed : kOk;
 }
@@ -189,8 +215,18 @@ Subcommand declareRun(CLI::App& app, const CommonOptions& common) {
                       "NAME=VALUE: set a parameter of the scenario's <environment> in a jump run, of its controller "
                       "otherwise, over the file's (repeatable; e.g. --param motor=dc)")
       ->check([](const std::string& s) {
-        return s.find('=') == std::string::npos || s.front() == '=' ? std::string("expected NAME=VALUE") : std::string();
+        const size_t eq = s.find('=');
+        return eq == std::string::npos || eq == 0 || eq + 1 == s.size()
+                   ? "'" + s + "': expected NAME=VALUE, both given"
+                   : std::string();
       });
+  // Flags that mean nothing alone are refused rather than ignored.
+  sub->get_option("--video-per-jump")->needs("--video");
+  sub->get_option("--size")->needs("--video");
+  sub->get_option("--fps")->needs("--video");
+  sub->get_option("--speed")->needs("--video");
+  sub->get_option("--camera")->needs("--video");
+  sub->get_option("--still")->needs("--video");
 
   sub->add_option("--jobs,-j", o->jobs, "worker threads of a jump run, one World each (default: one per core); "
                                      "results do not depend on it")

@@ -3,6 +3,7 @@
 // the table, write the results files and traces, and film the video.
 #include "run_jumps.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <unistd.h>
 #include <Eigen/Geometry>
 
+#include "output_paths.h"
 #include "progress.h"
 #include "stop_signal.h"
 #include "pronk/controller_factory.h"
@@ -69,9 +71,15 @@ std::vector<ParamSetting> withDurationOption(std::vector<ParamSetting> params, c
 }  // namespace
 
 std::vector<ParamSetting> withParamOptions(std::vector<ParamSetting> params, const RunOptions& options) {
+  std::vector<std::string> given;
   for (const std::string& option : options.params) {
-    const size_t eq = option.find('=');  // main() checked there is one, after a name
-    setParam(params, {option.substr(0, eq), option.substr(eq + 1), SourceLocation{"--param", 0}});
+    const size_t eq = option.find('=');  // the flag's check: a name, '=', a value
+    const std::string name = option.substr(0, eq);
+    if (std::find(given.begin(), given.end(), name) != given.end()) {
+      throw UsageError("--param " + name + " is given twice: give each parameter once");
+    }
+    given.push_back(name);
+    setParam(params, {name, option.substr(eq + 1), SourceLocation{"--param", 0}});
   }
   return params;
 }
@@ -100,8 +108,14 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
 
   const std::vector<EpisodeCase> cases = options.sweep.empty() ? targetCases(scenario) : sweepCases(scenario, options.sweep);
   const render::VideoOptions video = videoOptions(scenario, options);
-  if (!video.path.empty()) checkWritable(video.path);
+  if (!video.path.empty()) {
+    checkWritableFile(video.path, "--video");
+    checkNotAnInput(video.path, "--video", {{options.scenario, "SCENARIO"}, {policy_name, "--policy"}});
+    checkNotAmongFolderFiles(video.path, "--video", options.out_dir,
+                             [](const std::string& name) { return isRunFile(name); });
+  }
   if (!options.out_dir.empty()) {
+    checkOutputDirectory(options.out_dir, "--out");
     std::error_code ec;
     fs::create_directories(options.out_dir, ec);
     if (ec) throw Error("--out " + options.out_dir + ": cannot create the directory: " + ec.message());
@@ -156,12 +170,13 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   rollout.record_samples = options.trace || !video.path.empty();
   rollout.record_body_poses = !video.path.empty();
   if (options.full_episodes) rollout.end_at_rest = 0;
-  // SIGINT / SIGTERM: the running jumps finish, then the summary and the files
-  // of every finished jump are written (exit 130 / 143).
+  // A signal (StopOnSignal): the running jumps finish, then the summary and the
+  // files of every finished jump are written (exit 128 + the signal).
   const StopOnSignal stop;
   rollout.stop = stop.flag();
   const std::string factory_name = setup.factory->name, origin = setup.origin;
   const EnvironmentSchema schema = setup.schema;
+  for (const std::string& w : setup.warnings) std::cerr << "warning: " << w << "\n";
   RolloutPool pool(std::move(setup), rollout);
   for (const std::string& w : pool.robot().warnings) std::cerr << "warning: " << w << "\n";
 
@@ -184,7 +199,11 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   JumpResultsFiles files(schema);
   provenance["jobs"] = pool.threads();
   provenance["end_at_rest_s"] = rollout.end_at_rest;
+  provenance["complete"] = false;  // until every case has run and every file is written
   files.setRun(provenance);
+  // The first trace or video write that fails (a full disk, a file-size limit):
+  // the run goes on without traces and video, and its results are written.
+  std::string write_failure;
   Progress progress("jump", cases.size());
   const Eigen::Vector3d gravity(scenario.sim.gravity[0], scenario.sim.gravity[1], scenario.sim.gravity[2]);
   const auto start = std::chrono::steady_clock::now();
@@ -196,32 +215,41 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
     stats.add(r, outcome);
     const Trace& trace = r.result.episode.trace;
     std::string trace_file;
-    if (options.trace && !trace.samples.empty()) {
+    if (options.trace && !trace.samples.empty() && write_failure.empty()) {
       char name[32];
       std::snprintf(name, sizeof name, "jump-%03zu.csv", r.index);
-      trace_file = name;
-      writeTraceCsv(trace, (fs::path(options.out_dir) / name).string());
+      try {
+        writeTraceCsv(trace, (fs::path(options.out_dir) / name).string());
+        trace_file = name;
+      } catch (const Error& e) {
+        write_failure = e.what();
+      }
     }
     files.add(r, outcome, trace_file);
-    if (!video.path.empty() && !trace.samples.empty()) {
-      const Scenario s = applyCase(scenario, r.episode, pool.footprint());  // it ran, so it applies
-      const Terrain terrain(s.ground, s.ground_height, s.terrain);
-      const render::SceneMarkers markers = jumpMarkers(trace, r.episode.target, outcome.landing.error_xy,
-                                                      outcome.landing.error_yaw, terrain, gravity, &schema);
-      const std::optional<render::TerrainChange> apex = apexTerrainChange(s, terrain, trace);
-      if (options.video_per_jump) {
-        render::VideoOptions one = video;
-        char suffix[32];
-        std::snprintf(suffix, sizeof suffix, "-%03zu", r.index);
-        one.path = (fs::path(video.path).parent_path() / (fs::path(video.path).stem().string() + suffix +
-                                                           fs::path(video.path).extension().string()))
-                       .string();
-        const render::VideoSummary v =
-            render::renderEpisodeVideo(trace, pool.robot(), terrain, markers, one, &std::cerr, apex);
-        std::printf("video %s: %d frames, %.2f s\n", v.path.c_str(), v.frames, v.duration_s);
-      } else {
-        if (!movie) movie = std::make_unique<render::EpisodeVideo>(video, &std::cerr);
-        movie->add(trace, pool.robot(), terrain, markers, r.episode.label, apex);
+    if (!video.path.empty() && !trace.samples.empty() && write_failure.empty()) {
+      try {
+        const Scenario s = applyCase(scenario, r.episode, pool.footprint());  // it ran, so it applies
+        const Terrain terrain(s.ground, s.ground_height, s.terrain);
+        const render::SceneMarkers markers = jumpMarkers(trace, r.episode.target, outcome.landing.error_xy,
+                                                        outcome.landing.error_yaw, terrain, gravity, &schema);
+        const std::optional<render::TerrainChange> apex = apexTerrainChange(s, terrain, trace);
+        if (options.video_per_jump) {
+          render::VideoOptions one = video;
+          char suffix[32];
+          std::snprintf(suffix, sizeof suffix, "-%03zu", r.index);
+          one.path = (fs::path(video.path).parent_path() / (fs::path(video.path).stem().string() + suffix +
+                                                             fs::path(video.path).extension().string()))
+                         .string();
+          const render::VideoSummary v =
+              render::renderEpisodeVideo(trace, pool.robot(), terrain, markers, one, &std::cerr, apex);
+          std::printf("video %s: %d frames, %.2f s\n", v.path.c_str(), v.frames, v.duration_s);
+        } else {
+          if (!movie) movie = std::make_unique<render::EpisodeVideo>(video, &std::cerr);
+          movie->add(trace, pool.robot(), terrain, markers, r.episode.label, apex);
+        }
+      } catch (const Error& e) {
+        write_failure = e.what();
+        movie.reset();  // its partial file goes with it
       }
     }
     r.result.episode.trace.samples = {};  // keep memory bounded over long sweeps
@@ -241,17 +269,35 @@ int runJumps(const CommonOptions& common, const RunOptions& options, const Scena
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printJumpSummary(stdout, stats, wall);
 
+  std::optional<render::VideoSummary> film;
+  if (movie) {
+    try {
+      film = movie->finish();
+    } catch (const Error& e) {
+      if (write_failure.empty()) write_failure = e.what();
+    }
+  }
+  provenance["complete"] = !stop.signal() && write_failure.empty() && stats.jumps == cases.size();
+  if (stop.signal()) provenance["stopped_by_signal"] = stop.signal();
+  if (!write_failure.empty()) provenance["write_failure"] = write_failure;
+  files.setRun(provenance);
   if (!options.out_dir.empty()) {
     files.write(options.out_dir);
     std::printf("wrote %s, %s%s\n", (fs::path(options.out_dir) / "results.json").c_str(),
                 (fs::path(options.out_dir) / "results.csv").c_str(), options.trace ? " and a trace per jump" : "");
   }
-  if (movie) {
-    const render::VideoSummary v = movie->finish();
+  if (film) {
+    const render::VideoSummary& v = *film;
     for (const std::string& w : v.warnings) std::cerr << "warning: " << w << "\n";
     for (const std::string& png : v.stills) std::printf("still %s\n", png.c_str());
     std::printf("video %s: %d frames, %.2f s at %.0f fps (speed %.2f), %.1f MB, rendered in %.1f s\n", v.path.c_str(),
                 v.frames, v.duration_s, video.fps, video.speed, v.bytes / 1e6, v.wall_s);
+  }
+  if (!write_failure.empty()) {
+    std::fprintf(stderr, "pronk: %s; the run went on without %s, and %s\n", write_failure.c_str(),
+                 options.trace && video.path.empty() ? "traces" : "traces and video",
+                 options.out_dir.empty() ? "no results were asked for (--out)" : "every finished jump's results are written");
+    return kInputError;
   }
   if (stop.signal()) return 128 + stop.signal();
   return stats.failed + stats.rejected + stats.missed > 0 ? kEpisodeFailed : kOk;

@@ -5,10 +5,11 @@
 namespace pronk::cli {
 namespace {
 
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 std::atomic<int> g_signal{0};
 std::atomic<bool> g_stop{false};
 extern "C" void onStopSignal(int signal) {
-  g_signal = signal;  // lock-free atomics: safe in a handler
+  if (g_signal == 0) g_signal = signal;  // the first one says why; lock-free atomics: safe in a handler
   g_stop = true;
 }
 
@@ -17,13 +18,11 @@ extern "C" void onStopSignal(int signal) {
 StopOnSignal::StopOnSignal() {
   g_signal = 0;
   g_stop = false;
-  std::signal(SIGINT, onStopSignal);
-  std::signal(SIGTERM, onStopSignal);
+  for (int s : kStopSignals) std::signal(s, onStopSignal);
 }
 
 StopOnSignal::~StopOnSignal() {
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  for (int s : kStopSignals) std::signal(s, SIG_DFL);
 }
 
 const std::atomic<bool>* StopOnSignal::flag() const { return &g_stop; }

@@ -1,14 +1,16 @@
-// SIGINT / SIGTERM during a long command (run, eval, train): the handler only
-// sets a flag; the command hands out no more work, finishes what runs, writes
-// what finished, and exits 128 + the signal.
+// SIGINT, SIGTERM, SIGHUP or a closed stdout (SIGPIPE: `pronk run ... | head`)
+// during a command that writes results (run, render, eval, check, train): the
+// handler only sets a flag; the command hands out no more work, finishes or
+// ends what runs, writes what finished, and exits 128 + the signal.
 #pragma once
 
 #include <atomic>
 
 namespace pronk::cli {
 
-// While one lives, SIGINT and SIGTERM set its flag instead of killing the
-// process; the default handlers come back when it ends. One at a time.
+// While one lives, those signals set its flag instead of killing the process
+// (further writes to a closed stdout fail quietly); the default handlers come
+// back when it ends. One at a time.
 class StopOnSignal {
  public:
   StopOnSignal();

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "pronk/communicator.h"
 #include "pronk/controller_factory.h"
 #include "pronk/training.h"
@@ -84,7 +85,26 @@ std::string commandLine(const TrainOptions& o) {
   return c;
 }
 
+// The policy and the files beside it: none replaces a device or a folder, none is an input.
+void checkTrainingOutputs(const TrainOptions& o) {
+  namespace fs = std::filesystem;
+  const std::string curves = trainingCurvesPathFor(o.out);
+  const std::string script = (fs::path(curves).parent_path() / (fs::path(curves).stem().string() + ".gp")).string();
+  const std::vector<std::pair<std::string, std::string>> outputs = {{o.out, "--out"},
+                                                                    {checkpointPathFor(o.out), "--out's checkpoint"},
+                                                                    {trainingLogPathFor(o.out), "--out's log"},
+                                                                    {curves, "--out's curves"},
+                                                                    {script, "--out's plot script"}};
+  for (const auto& [path, flag] : outputs) {
+    checkOutputFile(path, flag);
+    // Resuming rewrites the checkpoint it resumes from, as it should.
+    if (path == checkpointPathFor(o.out)) checkNotAnInput(path, flag, {{o.file, "FILE"}});
+    else checkNotAnInput(path, flag, {{o.file, "FILE"}, {o.resume, "--resume"}});
+  }
+}
+
 int trainCommand(const CommonOptions& common, const TrainOptions& o) {
+  checkTrainingOutputs(o);
   const Scenario scenario = loadScenario(o.file);
   if (!scenario.training) {
     throw InputError({o.file, 0}, "no <training> element: nothing to train (docs/scenario-format.md)");

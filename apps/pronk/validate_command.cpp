@@ -86,7 +86,7 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
       if (scenario.environment) environment = ", environment " + checkEnvironment(scenario, registry, &world);
       // Every case a run would set up (a step platform needs room for its edge):
       // a target or a grid case a run would refuse, validate refuses, at its line;
-      // a random sweep's draws that would fail alone are counted in a warning.
+      // a random sweep's draws that a run would refuse alone are counted in a warning.
       const Footprint footprint = world.footprint();
       for (const EpisodeCase& c : targetCases(scenario)) applyCase(scenario, c, footprint);
       for (const SweepSpec& sweep : scenario.sweeps) {
@@ -95,14 +95,14 @@ int validateCommand(const CommonOptions& common, const std::vector<std::string>&
         for (const EpisodeCase& c : sweepCases(scenario, sweep.name)) {
           try {
             applyCase(scenario, c, footprint);
-          } catch (const InputError& e) {
+          } catch (const NoRoomForEdge& e) {
             if (sweep.kind != SweepSpec::Kind::Random) throw;
             if (refused++ == 0) first = e.what();
           }
         }
         if (refused > 0) {
           std::cerr << "warning: " << file << ": sweep '" << sweep.name << "': " << refused
-                    << " of its cases cannot be set up and will fail alone; the first: " << first << "\n";
+                    << " of its cases have no room for a platform edge and will be refused alone; the first: " << first << "\n";
         }
       }
       std::printf("ok  %s (%s, %d joints, %d feet, %zu targets%s)\n", file.c_str(), world.robot().name.c_str(),

@@ -57,20 +57,6 @@ render::VideoOptions videoOptions(const Scenario& scenario, const RunOptions& op
   return v;
 }
 
-// Fails now, naming the file, if the video cannot be written later.
-void checkWritable(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty()) fs::create_directories(parent, ec);
-  if (ec) throw Error(path + ": cannot create the video's directory: " + ec.message());
-  const bool existed = fs::exists(path, ec);
-  std::ofstream probe(path, std::ios::app);
-  if (!probe) throw Error(path + ": cannot write the video file");
-  probe.close();
-  if (!existed) fs::remove(path, ec);
-}
-
 render::SceneMarkers jumpMarkers(const Trace& trace, const TargetSpec& t, std::optional<double> error_xy,
                                  std::optional<double> error_yaw, const Terrain& terrain,
                                  const Eigen::Vector3d& gravity, const EnvironmentSchema* schema) {

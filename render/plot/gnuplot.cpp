@@ -72,6 +72,8 @@ void render(const GnuplotScript& script, const std::string& script_path) {
   const fs::path dir = fs::absolute(fs::path(script_path)).parent_path();
   const std::string log = (dir / (fs::path(script_path).stem().string() + ".log")).string();
   const std::string png = (dir / fs::path(script.png()).filename()).string();
+  checkReplaceable(png, "plot");
+  checkReplaceable(log, "plot log");
   std::error_code ec;
   fs::remove(png, ec);
 

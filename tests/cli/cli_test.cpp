@@ -109,9 +109,9 @@ TEST(Cli, RunWritesAVideoOfTheHop) {
   EXPECT_NE(o.output.find("80 frames"), std::string::npos) << o.output;
   EXPECT_GT(std::filesystem::file_size(dir + "/hop.mp4"), 1000u);
   EXPECT_EQ(pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir + "/x.mp4 --size 321x240").status, 3);
-  // A regular file where a directory should be: the error comes before the simulation.
+  // A regular file where a directory should be: the flag is refused before the simulation.
   const Outcome bad = pronk("run " + source("scenarios/go1/hop.xml") + " --video " + dir + "/hop.mp4/x.mp4");
-  EXPECT_EQ(bad.status, 3) << bad.output;
+  EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find(dir + "/hop.mp4/x.mp4"), std::string::npos) << bad.output;
   EXPECT_EQ(bad.output.find("simulated"), std::string::npos) << bad.output;
 }
@@ -393,6 +393,51 @@ TEST(Cli, NanEmptyAndHugeFlagValuesAreUsageErrors) {
   const Outcome video = pronk(run + "--video ''");
   EXPECT_EQ(video.status, 3) << video.output;
   EXPECT_NE(video.output.find("--video without a file name"), std::string::npos) << video.output;
+}
+
+TEST(Cli, FlagsThatMeanNothingAloneAndHalfGivenParametersAreUsageErrors) {
+  const std::string run = "run " + source("scenarios/go1/forward.xml") + " --policy ballistic ";
+  for (const std::string& alone : {"--size 320x240", "--video-per-jump", "--fps 20", "--still 0.5", "--camera top"}) {
+    const Outcome o = pronk(run + alone);
+    EXPECT_EQ(o.status, 2) << alone << "\n" << o.output;
+    EXPECT_NE(o.output.find("requires --video"), std::string::npos) << alone << "\n" << o.output;
+  }
+  const Outcome empty = pronk(run + "--param motor=");
+  EXPECT_EQ(empty.status, 2) << empty.output;
+  EXPECT_NE(empty.output.find("'motor=': expected NAME=VALUE, both given"), std::string::npos) << empty.output;
+  const Outcome twice = pronk(run + "--param motor=dc --param motor=ideal");
+  EXPECT_EQ(twice.status, 2) << twice.output;
+  EXPECT_NE(twice.output.find("--param motor is given twice"), std::string::npos) << twice.output;
+}
+
+TEST(Cli, APolicyTrainedOnAnotherRobotIsFlownWithAWarningNamingBoth) {
+  const Outcome o = pronk("run " + source("scenarios/aliengo/forward.xml") + " --policy " +
+                          source("assets/policies/go1_omni.json"));
+  EXPECT_NE(o.output.find("go1_omni.json was trained on the go1; this scenario's robot is the aliengo"),
+            std::string::npos)
+      << o.output;
+  const Outcome own = pronk("run " + source("scenarios/aliengo/forward.xml") + " --policy " +
+                            source("assets/policies/aliengo_omni.json"));
+  EXPECT_EQ(own.output.find("was trained on the"), std::string::npos) << own.output;
+}
+
+TEST(Cli, ATraceWithANonFiniteNumberIsRefusedAtItsLine) {
+  const std::string dir = std::string(PRONK_CLI_OUT_DIR) + "/trace_nan";
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(pronk("run " + source("scenarios/go1/stand.xml") + " --duration 0.05 --out " + dir).status, 0);
+  std::ifstream in(dir + "/trace.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_GT(lines.size(), 3u);
+  lines[2] = lines[2].substr(0, lines[2].find(',')) + ",nan" + lines[2].substr(lines[2].find(',', lines[2].find(',') + 1));
+  std::ofstream out(dir + "/trace.csv");
+  for (const std::string& line : lines) out << line << "\n";
+  out.close();
+  const Outcome o = pronk("render " + source("scenarios/go1/stand.xml") + " --trace " + dir + "/trace.csv -o " + dir +
+                          "/v.mp4");
+  EXPECT_EQ(o.status, 3) << o.output;
+  EXPECT_NE(o.output.find(dir + "/trace.csv:3: column 'base_x': 'nan' is not a finite number"), std::string::npos)
+      << o.output;
 }
 
 TEST(Cli, AModelTooStiffToSimulateFailsOnItsStepBudget) {

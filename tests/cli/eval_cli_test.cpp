@@ -84,13 +84,15 @@ TEST(PronkEval, NeverOverwritesAnEarlierEvaluation) {
   EXPECT_EQ(again.status, 3) << again.output;
   EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
   EXPECT_EQ(readFile(out + "/go1_eval_small-targets/jumps.jsonl"), before);
-  // A resume with another policy is refused by the set's manifest.
-  fs::remove(out + "/summary.json");
+  // A resume with another policy is refused by the set's manifest, and the
+  // finished evaluation's summary is left as it was.
+  const std::string summary = readFile(out + "/summary.json");
   const pronk_test::Outcome other = pronk("eval " + kSmall + " --sweep targets --resume --out " + out + " --policy " +
                                           pronk_test::source("assets/policies/go1_flat_aim.json"));
   EXPECT_EQ(other.status, 3) << other.output;
   EXPECT_NE(other.output.find("set.json: written for policy \"ballistic\""), std::string::npos) << other.output;
   EXPECT_EQ(readFile(out + "/go1_eval_small-targets/jumps.jsonl"), before);
+  EXPECT_EQ(readFile(out + "/summary.json"), summary);
 }
 
 TEST(PronkEval, AResumedRunDoesOnlyWhatIsLeftAndEndsAsAWholeRun) {

@@ -967,7 +967,7 @@ TEST(JumpRuns, ParamFlagSetsAnEnvironmentParameter) {
   EXPECT_NE(unknown.output.find("--param: unknown parameter 'motr'"), std::string::npos) << unknown.output;
   const CommandRun malformed = pronk("run " + source("scenarios/go1/up.xml") + " --policy ballistic --param motor");
   EXPECT_EQ(malformed.status, 2) << malformed.output;
-  EXPECT_NE(malformed.output.find("--param: expected NAME=VALUE"), std::string::npos) << malformed.output;
+  EXPECT_NE(malformed.output.find("--param: 'motor': expected NAME=VALUE"), std::string::npos) << malformed.output;
 }
 
 TEST(JumpRuns, DurationFlagSetsTheEpisodeLength) {
@@ -989,7 +989,7 @@ TEST(JumpRuns, DurationFlagSetsTheEpisodeLength) {
       << bad.output;
 }
 
-TEST(JumpRuns, ACaseThatCannotBeSetUpIsRefusedByValidateAndFailsAloneInARun) {
+TEST(JumpRuns, ACaseWithNoRoomForItsEdgeIsRefusedByValidateAndAloneInARun) {
   const std::string file = testScenario("go1_case_without_room.xml");
   const CommandRun v = pronk("validate " + file);
   EXPECT_EQ(v.status, 3) << v.output;
@@ -1001,8 +1001,11 @@ TEST(JumpRuns, ACaseThatCannotBeSetUpIsRefusedByValidateAndFailsAloneInARun) {
   const nlohmann::json j = results(out);
   ASSERT_TRUE(j.is_array() && j.size() == 2u) << r.output;
   EXPECT_EQ(j[0]["status"], "ok");
-  EXPECT_EQ(j[1]["status"], "failed");
-  EXPECT_EQ(j[1]["failure_reason"].get<std::string>().rfind("setup: ", 0), 0u) << j[1]["failure_reason"];
+  // Refused as an infeasible jump is, with its reason, not counted as a failure.
+  EXPECT_EQ(j[1]["status"], "rejected");
+  EXPECT_EQ(j[1]["failure_reason"].get<std::string>().rfind("terrain: ", 0), 0u) << j[1]["failure_reason"];
+  EXPECT_NE(j[1]["failure_reason"].get<std::string>().find("needs a platform edge"), std::string::npos);
+  EXPECT_NE(r.output.find("1 rejected before running, 0 failed"), std::string::npos) << r.output;
 }
 
 TEST(JumpRuns, AnInterruptedSweepKeepsEveryFinishedJump) {

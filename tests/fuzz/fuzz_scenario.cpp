@@ -1,7 +1,7 @@
 // libFuzzer target: the bytes as a scenario file -> pronk::loadScenario (or
 // loadScenarioPart for a <scenario_part>, as `pronk validate` does), then each
 // case of the targets and of every sweep applied, as validate does, for sweeps
-// of at most kMaxCases cases (a legal sweep may hold 10 million). The reader takes a path and follows <include file> and
+// of at most kMaxCases cases (a legal sweep may hold 100 000). The reader takes a path and follows <include file> and
 // <platform urdf> relative to it, so the input is written to a file in a
 // per-process sandbox whose links make the paths of the project's scenarios
 // (scenarios/*/) and test fixtures (tests/scenario/broken/) resolve. A

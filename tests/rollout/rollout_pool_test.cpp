@@ -196,7 +196,7 @@ TEST_F(Rollout, ACaseWhosePolicyThrowsFailsAloneWithItsReason) {
   EXPECT_EQ(outcomes[2].status, "ok") << outcomes[2].reason;
 }
 
-TEST_F(Rollout, ACaseThatCannotBeSetUpFailsAloneWithItsReason) {
+TEST_F(Rollout, ACaseWithNoRoomForItsEdgeIsRefusedAloneWithItsReason) {
   // A height target straight above the start has no room for a platform edge.
   std::vector<EpisodeCase> cases = targetCases(scenario_);
   EpisodeCase above = cases.front();
@@ -208,7 +208,8 @@ TEST_F(Rollout, ACaseThatCannotBeSetUpFailsAloneWithItsReason) {
   std::vector<JumpOutcome> outcomes;
   pool.run(cases, [&](EpisodeRecord& r) { outcomes.push_back(judgeJump(r)); });
   ASSERT_EQ(outcomes.size(), 2u);
-  EXPECT_EQ(outcomes[0].status, "failed");
+  EXPECT_EQ(outcomes[0].status, "rejected");
+  EXPECT_EQ(outcomes[0].reason.rfind("terrain: ", 0), 0u) << outcomes[0].reason;
   EXPECT_NE(outcomes[0].reason.find("needs a platform edge"), std::string::npos) << outcomes[0].reason;
   EXPECT_EQ(outcomes[1].status, "ok") << outcomes[1].reason;
 }

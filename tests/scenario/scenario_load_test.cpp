@@ -651,6 +651,13 @@ TEST(Numbers, ParseStrictly) {
     const fs::path file = tree.write("good.xml", scenarioWith(tinyPlatform() + "<sim duration=\"" + good + "\"/>\n"));
     EXPECT_DOUBLE_EQ(loadScenario(file.string()).sim.duration, value) << good;
   }
+  // Whole numbers take padding as every number does; a fraction or a blank is no integer.
+  const fs::path padded = tree.write("padded.xml", scenarioWith(tinyPlatform() + "<render width=\" 640 \"/>\n"));
+  EXPECT_EQ(loadScenario(padded.string()).render->width, 640);
+  for (const std::string bad : {" ", "6.5", "0x10", "1 2"}) {
+    const fs::path file = tree.write("int.xml", scenarioWith(tinyPlatform() + "<render width=\"" + bad + "\"/>\n"));
+    EXPECT_NE(loadError(file).find("width: \"" + bad + "\" is not an integer"), std::string::npos) << loadError(file);
+  }
 }
 
 TEST(Numbers, VectorsNeedTheirExactCount) {

@@ -221,6 +221,31 @@ TEST(PronkTrain, ResumedRunEqualsAnUninterruptedOne) {
   EXPECT_EQ(cb["jumps"], 32);
 }
 
+// A signal during the last iteration's validation leaves that iteration done
+// and its row unvalidated; resuming runs the validation into that row, so the
+// policy's provenance carries the end's figures, not an earlier iteration's.
+TEST(PronkTrain, AValidationCutShortIsRunOnResuming) {
+  const std::string dir = outDir("train_validation_cut");
+  ASSERT_EQ(pronk("train " + kTinyTraining + " --jobs 2 --out " + dir + "/p.json").status, 0);
+  const json finished = readJson(dir + "/p.json")["provenance"]["validation"];
+  ASSERT_EQ(finished["iteration"], 2) << finished.dump();
+  // The checkpoint as the signal leaves it: iteration 2 done, its row not validated.
+  json checkpoint = readJson(dir + "/p.checkpoint.json");
+  const std::vector<std::string> columns = checkpoint["log_columns"].get<std::vector<std::string>>();
+  const size_t validated = static_cast<size_t>(std::find(columns.begin(), columns.end(), "validated") - columns.begin());
+  ASSERT_LT(validated, columns.size());
+  checkpoint["log"].back()[validated] = 0;
+  std::ofstream(dir + "/p.checkpoint.json") << checkpoint.dump(1) << "\n";
+
+  const Outcome resumed = pronk("train " + kTinyTraining + " --jobs 2 --out " + dir + "/p.json --resume " + dir +
+                                "/p.checkpoint.json");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  const json validation = readJson(dir + "/p.json")["provenance"]["validation"];
+  EXPECT_EQ(validation["iteration"], 2) << validation.dump();
+  EXPECT_EQ(validation, finished);  // the same policy, the same fixed targets
+  EXPECT_EQ(readJson(dir + "/p.checkpoint.json")["log"].back()[validated], 1);
+}
+
 // The aim correction with hindsight relabelling: the policy file says what it
 // is, its checkpoint carries the hindsight pairs (the newest 12 of the jumps
 // that ended standing), and a resumed run equals an uninterrupted one.

@@ -3,6 +3,7 @@
 // become trace events.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -33,6 +34,9 @@ struct EpisodeOptions {
   // ground plane at `floor` plus this platform (ApexPlatform); the trace gets
   // an "apex_platform" event with the top's height.
   std::optional<ApexPlatform> apex_platform;
+  // When it becomes true (a signal handler's flag) the episode ends at the next
+  // control tick, as if its duration had passed, with a "stopped" event.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // When, and with its top at what height, the apex platform appeared in an

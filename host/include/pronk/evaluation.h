@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "pronk/error.h"
+
 #include <nlohmann/json.hpp>
 
 namespace pronk {
@@ -89,8 +91,12 @@ class JumpLog {
 // A set's directory in an evaluation's output: set.json (what the set was run
 // with: file, set, policy and their fingerprints) and the jump log. A new
 // directory is created with the manifest; an existing one needs `resume` and
-// the same manifest (else Error naming set.json and the field that differs),
-// so that results are never mixed or overwritten.
+// the same manifest (else ResumeRefused naming set.json and the field that
+// differs), so that results are never mixed or overwritten.
+class ResumeRefused : public Error {
+ public:
+  using Error::Error;
+};
 class EvaluationSetDir {
  public:
   EvaluationSetDir(const std::string& dir, const nlohmann::json& manifest, bool resume);

@@ -49,10 +49,27 @@ inline std::string readInputFile(const std::string& path, const std::string& wha
   return text.str();
 }
 
+// Throws Error "will not replace the <what> PATH: ..." when something other
+// than a regular file is there: a directory, a device node, a FIFO or a socket
+// is never replaced (a symbolic link is: the rename replaces the link, never
+// what it points to).
+inline void checkReplaceable(const std::string& path, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status there = fs::symlink_status(path, ec);
+  if (!ec && fs::exists(there) && !fs::is_regular_file(there) && !fs::is_symlink(there)) {
+    throw Error("will not replace the " + what + " " + path +
+                ": it is not a regular file (a directory, a device or a pipe)");
+  }
+}
+
 // Writes `text` to PATH.partial and renames it over PATH. Throws Error "cannot
-// write the <what> PATH.partial: reason" or "cannot replace the <what> PATH: reason".
+// write the <what> PATH.partial: reason" or "cannot replace the <what> PATH:
+// reason", and checkReplaceable's.
 inline void replaceFileAtomically(const std::string& path, const std::string& text, const std::string& what) {
+  checkReplaceable(path, what);
   const std::string partial = path + ".partial";
+  checkReplaceable(partial, what);
   {
     std::ofstream out(partial, std::ios::binary | std::ios::trunc);
     if (!out) throw Error("cannot write the " + what + " " + partial + ": " + std::strerror(errno));

@@ -75,8 +75,19 @@ class PluginRegistry {
   // recursively, sorted by name) for files named *.so. A library whose file name was
   // already loaded from an earlier entry is skipped, so earlier entries shadow later ones
   // (a build tree's plugin before an installed copy). An entry that does not exist is an
-  // error: pass searchPath()'s result, which leaves out missing default directories.
+  // error: pass searchPath()'s result, which leaves out missing default directories. A
+  // library named as an entry that cannot be loaded is an error; one found in a
+  // directory is skipped (skipped()), so that it stops only what needs it.
   void loadSearchPath(const std::vector<std::string>& entries);
+
+  // Libraries of a searched directory that could not be loaded, with the reason.
+  struct Skipped {
+    std::string path;
+    std::string reason;
+  };
+  const std::vector<Skipped>& skipped() const { return skipped_; }
+  // "; not loaded: PATH (REASON), ..." for messages about a factory not found; "" when none.
+  std::string skippedNote() const;
 
   // The plugin search path, highest precedence first: `explicit_entries` (from --plugin,
   // files or directories), then each non-empty entry of the colon-separated
@@ -101,10 +112,15 @@ class PluginRegistry {
   const PluginLibrary& add(std::unique_ptr<PluginLibrary> library);
 
   std::vector<std::unique_ptr<PluginLibrary>> libraries_;
+  std::vector<Skipped> skipped_;
 };
 
 // "controller" / "environment" / "kind <n>".
 std::string factoryKindName(uint32_t kind);
+
+// From here on, a fatal signal or exit() inside a plugin call names the plugin,
+// the factory and the call before the process ends (main() calls it once).
+void reportPluginCrashes();
 
 // Parameters resolved against a factory's schema: every declared parameter, in
 // declaration order, with defaults filled in. Owns its strings; data() stays

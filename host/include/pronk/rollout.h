@@ -41,6 +41,8 @@ struct RolloutSetup {
   // Called from the worker threads, concurrently: it must not share mutable
   // state between calls (an MlpPolicy is const; `ballistic` asks its own env).
   Policy policy;
+  // What a user should hear before the run: a policy trained on another robot.
+  std::vector<std::string> warnings;
 };
 
 struct RolloutOptions {
@@ -64,11 +66,13 @@ struct EpisodeRecord {
   size_t index = 0;                 // case index = the episode's seed
   EpisodeCase episode;
   EnvironmentEpisodeResult result;  // task, observation, action, reward, trace, failure
-  // The case could not be set up (e.g. a step platform with no room for its
-  // edge): nothing ran, the rest of the run goes on. A case whose environment
-  // or policy throws pronk::Error fails alone too: result.episode.failure,
-  // reason "error".
+  // The case could not be set up: nothing ran, the rest of the run goes on. A
+  // case whose environment or policy throws pronk::Error fails alone too:
+  // result.episode.failure, reason "error".
   std::optional<std::string> setup_error;
+  // The setup refused the case's geometry (a step platform with no room for its
+  // edge between the two stances): reported as a refused jump, not a failure.
+  bool setup_refused = false;
 };
 
 using EpisodeSink = std::function<void(EpisodeRecord& record)>;
@@ -135,6 +139,9 @@ RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& re
 // for a residual (a version-2 file with a prior) gives prior_action + network.
 // Throws InputError naming the file when it cannot be used with `factory` (its
 // sizes, or a residual over another environment or one without prior_action).
-Policy makePolicy(const std::string& name, const pronk_factory& factory);
+// `robot`: the scenario's platform; a policy file trained on another one adds a
+// warning naming both to `warnings` (a zero-shot transfer is allowed).
+Policy makePolicy(const std::string& name, const pronk_factory& factory, const std::string& robot = "",
+                  std::vector<std::string>* warnings = nullptr);
 
 }  // namespace pronk

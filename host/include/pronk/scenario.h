@@ -280,6 +280,7 @@ struct ExpectSpec {
   SourceLocation where;
 };
 
+// A new field goes into applyCase's copy too, unless it lists cases.
 struct Scenario {
   std::string file;              // absolute path of the top-level file
   std::string name;
@@ -366,10 +367,15 @@ struct Footprint {
 // the start feet, 1 next to the landing feet. An up target's platform runs from
 // the edge to 0.6 m beyond the target; a down target's start platform from 0.8 m
 // behind the start to the edge, and the robot starts on it. Two stances with no
-// room between them (a target too near the start) is an InputError naming the
-// target and the overlap. With step_platforms="apex", apex_platform set instead
-// (no box is added).
+// room between them (a target too near the start) is a NoRoomForEdge naming the
+// target and the overlap: a target refused, as an infeasible jump is. With
+// step_platforms="apex", apex_platform set instead (no box is added). The
+// result holds no targets, sweeps, training nor expectations: a case needs none.
 constexpr double kStepEdgeClearance = 0.05;  // m along the jump, from a foot's centre to the edge
+class NoRoomForEdge : public InputError {
+ public:
+  using InputError::InputError;
+};
 Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode, const Footprint& footprint);
 
 // The only major version of the format this build reads.

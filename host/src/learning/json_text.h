@@ -47,15 +47,20 @@ std::string nlohmannDetail(const std::string& what);
 // key written twice in one object, and where and why the text is refused
 // (a syntax error, a number beyond a double, nesting deeper than a bound).
 // The SAX parser keeps its own stack, so a hostile depth cannot exhaust ours;
-// the document's copies and destructors recurse, hence the bound.
+// the document's copies and destructors recurse, hence the bound. Memory is
+// bounded too: a file of numbers takes about its own size as a document and a
+// layout, but "[[],[],...]" takes 30 times its size; a text whose document and
+// layout would take more than kMemoryPerByte times its size (plus a little) is
+// refused (TooLarge) as soon as it gets there.
 class JsonLayout {
  public:
+  static constexpr std::size_t kMemoryPerByte = 4;
   JsonLayout(const std::string& text, int max_depth);
   ~JsonLayout();
   JsonLayout(JsonLayout&&) noexcept;
 
   struct Refusal {
-    enum class Kind { Syntax, Overflow, TooDeep } kind = Kind::Syntax;
+    enum class Kind { Syntax, Overflow, TooDeep, TooLarge } kind = Kind::Syntax;
     std::size_t offset = 0;  // the culprit: the character read last, the number, the bracket
     std::string message;     // nlohmann's, without its "[json.exception...] " prefix
   };

@@ -148,7 +148,8 @@ class PolicyReader {
       using Kind = policy_file::JsonLayout::Refusal::Kind;
       const std::string column = "column " + std::to_string(policy_file::positionOf(text_, refusal->offset).column);
       switch (refusal->kind) {
-        case Kind::TooDeep: failAt(refusal->offset, column + ": " + refusal->message);
+        case Kind::TooDeep:
+        case Kind::TooLarge: failAt(refusal->offset, column + ": " + refusal->message);
         case Kind::Overflow: failAt(refusal->offset, column + ": " + refusal->message + " (beyond the range of a double)");
         case Kind::Syntax: failAt(refusal->offset, column + ": invalid JSON: " + refusal->message);
       }

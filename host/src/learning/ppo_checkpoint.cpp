@@ -321,7 +321,8 @@ PpoLearner loadPpoCheckpoint(const std::string& path) {
   // A checkpoint is at most a few levels deep; deeper nesting is a damaged or
   // hostile file, refused before the recursive parse and copies.
   const policy_file::JsonLayout layout(text, 64);
-  if (const auto& refusal = layout.refusal(); refusal && refusal->kind == policy_file::JsonLayout::Refusal::Kind::TooDeep) {
+  using Kind = policy_file::JsonLayout::Refusal::Kind;
+  if (const auto& refusal = layout.refusal(); refusal && (refusal->kind == Kind::TooDeep || refusal->kind == Kind::TooLarge)) {
     throw InputError({path, policy_file::positionOf(text, refusal->offset).line}, refusal->message);
   }
   json doc;

@@ -9,6 +9,7 @@
 #include <dlfcn.h>
 #include <set>
 
+#include "plugin_call.h"
 #include "pronk/plugin_registry.h"
 #include "pronk/schema.h"
 
@@ -43,6 +44,12 @@ constexpr int32_t kMaxFactories = 1024;
 constexpr int32_t kMaxParams = 256;
 constexpr uint32_t kMaxVectorSize = 4096;
 constexpr size_t kMaxNameLength = 128;
+// Far beyond any robot or network, small enough that the host's buffers of
+// these sizes (per episode, per jump) cost nothing: a corrupt field is refused,
+// not allocated.
+constexpr int32_t kMaxJoints = 1024;
+constexpr int32_t kMaxObservationSize = 1 << 16;
+constexpr int32_t kMaxActionSize = 4096;
 
 std::string versionText(uint32_t v) {
   return std::to_string(PRONK_ABI_VERSION_MAJOR(v)) + "." + std::to_string(PRONK_ABI_VERSION_MINOR(v));
@@ -240,7 +247,10 @@ std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const 
   }
   const std::string who = factoryKindName(f.kind) + " '" + f.name + "'";
   if (!f.create) check.fail(who + " has no create()");
-  if (f.joint_count < 0) check.fail(who + " declares " + std::to_string(f.joint_count) + " joints");
+  if (f.joint_count < 0 || f.joint_count > kMaxJoints) {
+    check.fail(who + " declares " + std::to_string(f.joint_count) + " joints (at most " + std::to_string(kMaxJoints) +
+               ")");
+  }
   if (!std::isfinite(f.control_period) || f.control_period < 0) {
     check.fail(who + " declares control period " + std::to_string(f.control_period) + " s");
   }
@@ -263,9 +273,11 @@ std::unique_ptr<PluginLibrary::Factory> readFactory(const Checker& check, const 
     if (!e.reset || !e.act || !e.step || !e.finish || !e.destroy) {
       check.fail(who + " lacks one of reset(), act(), step(), finish(), destroy()");
     }
-    if (f.observation_size <= 0 || f.action_size <= 0) {
+    if (f.observation_size <= 0 || f.action_size <= 0 || f.observation_size > kMaxObservationSize ||
+        f.action_size > kMaxActionSize) {
       check.fail(who + " declares observation size " + std::to_string(f.observation_size) + " and action size " +
-                 std::to_string(f.action_size) + "; an environment needs both > 0");
+                 std::to_string(f.action_size) + "; an environment needs both > 0, at most " +
+                 std::to_string(kMaxObservationSize) + " and " + std::to_string(kMaxActionSize));
     }
     f.environment = &out->environment;
     f.controller = nullptr;
@@ -325,7 +337,11 @@ std::unique_ptr<PluginLibrary> PluginRegistry::handshake(const std::string& path
   pronk_plugin_manifest manifest{};
   manifest.struct_size = sizeof manifest;
   char message[1024] = "";
-  const pronk_status status = query(host, &manifest, message, sizeof message);
+  pronk_status status = PRONK_OK;
+  {
+    const PluginCallScope call(path.c_str(), nullptr, "pronk_plugin_query");
+    status = query(host, &manifest, message, sizeof message);
+  }
   message[sizeof message - 1] = '\0';
   const std::string said = message[0] ? message : "no message";
   if (status == PRONK_ERROR_VERSION) {

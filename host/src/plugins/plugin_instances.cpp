@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "plugin_call.h"
 #include "pronk/plugin_registry.h"
 
 namespace pronk {
@@ -30,6 +31,7 @@ void* create(const pronk_factory& f, const std::string& origin, const pronk_host
   }
   void* instance = nullptr;
   Message m;
+  const PluginCallScope call(origin.c_str(), f.name, "create");
   const pronk_status st = f.create(&host, params.data(), params.size(), &instance, m.text, kMessageSize);
   if (st != PRONK_OK || !instance) {
     throw Error(describeFactory(f, origin) + " could not be created: " +
@@ -44,13 +46,17 @@ ControllerInstance::ControllerInstance(const pronk_factory& factory, const std::
                                        const pronk_host_api& host, const ResolvedParams& params)
     : factory_(factory), origin_(origin), instance_(create(factory, origin, host, params, PRONK_FACTORY_CONTROLLER)) {}
 
-ControllerInstance::~ControllerInstance() { factory_.controller->destroy(instance_); }
+ControllerInstance::~ControllerInstance() {
+  const PluginCallScope call(origin_.c_str(), factory_.name, "destroy");
+  factory_.controller->destroy(instance_);
+}
 
 std::string ControllerInstance::describe() const { return describeFactory(factory_, origin_); }
 
 void ControllerInstance::reset(const pronk_robot_state& state) {
   if (!factory_.controller->reset) return;
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "reset");
   if (factory_.controller->reset(instance_, &state, m.text, kMessageSize) != PRONK_OK) {
     throw Error(describe() + ": reset failed: " + m.str());
   }
@@ -58,6 +64,7 @@ void ControllerInstance::reset(const pronk_robot_state& state) {
 
 void ControllerInstance::compute(const pronk_robot_state& state, double* torque) {
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "compute");
   if (factory_.controller->compute(instance_, &state, torque, m.text, kMessageSize) != PRONK_OK) {
     throw Error(describe() + ": compute failed at t = " + std::to_string(state.time) + " s: " + m.str());
   }
@@ -67,7 +74,10 @@ EnvironmentInstance::EnvironmentInstance(const pronk_factory& factory, const std
                                          const pronk_host_api& host, const ResolvedParams& params)
     : factory_(factory), origin_(origin), instance_(create(factory, origin, host, params, PRONK_FACTORY_ENVIRONMENT)) {}
 
-EnvironmentInstance::~EnvironmentInstance() { factory_.environment->destroy(instance_); }
+EnvironmentInstance::~EnvironmentInstance() {
+  const PluginCallScope call(origin_.c_str(), factory_.name, "destroy");
+  factory_.environment->destroy(instance_);
+}
 
 std::string EnvironmentInstance::describe() const { return describeFactory(factory_, origin_); }
 
@@ -75,6 +85,7 @@ std::vector<double> EnvironmentInstance::reset(const std::vector<double>& task, 
                                                const pronk_robot_state& state) {
   std::vector<double> observation(static_cast<size_t>(factory_.observation_size), 0.0);
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "reset");
   if (factory_.environment->reset(instance_, task.data(), static_cast<int32_t>(task.size()), seed, &state,
                                   observation.data(), m.text, kMessageSize) != PRONK_OK) {
     throw Error(describe() + ": reset failed: " + m.str());
@@ -96,6 +107,7 @@ std::optional<std::string> EnvironmentInstance::act(const std::vector<double>& a
   }
   reset_state_ = nullptr;  // the episode starts: no retask() now
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "act");
   const pronk_status st = factory_.environment->act(instance_, action.data(), m.text, kMessageSize);
   if (st == PRONK_REJECTED) return m.str();
   if (st != PRONK_OK) throw Error(describe() + ": act failed: " + m.str());
@@ -117,6 +129,7 @@ EnvironmentInstance::PriorAction EnvironmentInstance::prior(const std::vector<do
   PriorAction out;
   out.action.assign(static_cast<size_t>(factory_.action_size), 0.0);
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "prior_action");
   const pronk_status status =
       factory_.environment->prior_action(instance_, observation.data(), out.action.data(), m.text, kMessageSize);
   if (status == PRONK_REJECTED) {
@@ -133,6 +146,7 @@ EnvironmentInstance::PriorAction EnvironmentInstance::prior(const std::vector<do
 bool EnvironmentInstance::step(const pronk_robot_state& state, double* torque) {
   int32_t done = 0;
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "step");
   if (factory_.environment->step(instance_, &state, torque, &done, m.text, kMessageSize) != PRONK_OK) {
     throw Error(describe() + ": step failed at t = " + std::to_string(state.time) + " s: " + m.str());
   }
@@ -142,6 +156,7 @@ bool EnvironmentInstance::step(const pronk_robot_state& state, double* torque) {
 double EnvironmentInstance::finish(const pronk_robot_state& state) {
   double reward = 0;
   Message m;
+  const PluginCallScope call(origin_.c_str(), factory_.name, "finish");
   if (factory_.environment->finish(instance_, &state, &reward, m.text, kMessageSize) != PRONK_OK) {
     throw Error(describe() + ": finish failed: " + m.str());
   }

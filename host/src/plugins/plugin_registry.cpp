@@ -2,6 +2,8 @@
 // kind and name.
 #include "pronk/plugin_registry.h"
 
+#include "plugin_call.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
@@ -64,7 +66,11 @@ const PluginLibrary& PluginRegistry::load(const std::string& file) {
 
   dlerror();  // clear any earlier error
   // An absolute path, so that dlopen never searches the library path for a bare name.
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  void* handle = nullptr;
+  {
+    const PluginCallScope call(path.c_str(), nullptr, "static constructors (dlopen)");
+    handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  }
   if (!handle) throw Error("cannot load plugin '" + file + "': " + dlerrorText());
   for (const auto& lib : libraries_) {
     if (lib->handle_ == handle) {  // the same file under another name (a link)
@@ -116,11 +122,20 @@ const PluginLibrary& PluginRegistry::add(std::unique_ptr<PluginLibrary> library)
 
 void PluginRegistry::loadSearchPath(const std::vector<std::string>& entries) {
   std::set<std::string> loaded_names;  // file names already loaded from an earlier entry
-  auto loadFile = [&](const fs::path& file) {
+  auto loadFile = [&](const fs::path& file, bool found_in_directory) {
     const std::string name = file.filename().string();
     if (loaded_names.count(name)) return;  // shadowed by an earlier entry
-    load(file.string());
     loaded_names.insert(name);
+    if (!found_in_directory) {
+      load(file.string());
+      return;
+    }
+    // A broken library found in a directory stops only what needs it.
+    try {
+      load(file.string());
+    } catch (const Error& e) {
+      skipped_.push_back({file.string(), e.what()});
+    }
   };
   for (const std::string& entry : entries) {
     if (entry.empty()) continue;
@@ -128,7 +143,7 @@ void PluginRegistry::loadSearchPath(const std::vector<std::string>& entries) {
     const fs::file_status st = fs::status(entry, ec);
     if (ec || !fs::exists(st)) throw Error("plugin path entry '" + entry + "' does not exist");
     if (!fs::is_directory(st)) {
-      loadFile(entry);
+      loadFile(entry, false);
       continue;
     }
     std::vector<fs::path> files;
@@ -138,8 +153,14 @@ void PluginRegistry::loadSearchPath(const std::vector<std::string>& entries) {
     }
     if (ec) throw Error("cannot read plugin directory '" + entry + "': " + ec.message());
     std::sort(files.begin(), files.end());
-    for (const fs::path& file : files) loadFile(file);
+    for (const fs::path& file : files) loadFile(file, true);
   }
+}
+
+std::string PluginRegistry::skippedNote() const {
+  std::string note;
+  for (const Skipped& s : skipped_) note += (note.empty() ? "; not loaded: " : ", ") + s.path + " (" + s.reason + ")";
+  return note;
 }
 
 std::vector<std::string> PluginRegistry::defaultDirectories() {

@@ -299,8 +299,10 @@ EvaluationSetDir::EvaluationSetDir(const std::string& dir, const nlohmann::json&
   const std::string manifest_path = (fs::path(dir) / "set.json").string();
   std::error_code ec;
   if (fs::exists(dir, ec)) {
-    if (!resume) throw Error(dir + ": exists (an earlier evaluation): give --resume, or another --out");
-    if (!fs::exists(manifest_path, ec)) throw Error(manifest_path + ": missing: " + dir + " is no evaluation set's directory");
+    if (!resume) throw ResumeRefused(dir + ": exists (an earlier evaluation): give --resume, or another --out");
+    if (!fs::exists(manifest_path, ec)) {
+      throw ResumeRefused(manifest_path + ": missing: " + dir + " is no evaluation set's directory");
+    }
     nlohmann::json old;
     try {
       old = nlohmann::json::parse(readInputFile(manifest_path, "set manifest"));
@@ -309,7 +311,7 @@ EvaluationSetDir::EvaluationSetDir(const std::string& dir, const nlohmann::json&
     }
     for (const auto& [key, value] : manifest.items()) {
       if (!old.contains(key) || old[key] != value) {
-        throw Error(manifest_path + ": written for " + key + " " + (old.contains(key) ? old[key].dump() : "(none)") +
+        throw ResumeRefused(manifest_path + ": written for " + key + " " + (old.contains(key) ? old[key].dump() : "(none)") +
                     ", this run has " + value.dump() + ": --resume continues only the same run; use another --out");
       }
     }

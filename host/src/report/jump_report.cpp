@@ -29,7 +29,7 @@ double metricOrNaN(const Trace& trace, const char* name) {
 const TraceEvent* event(const Trace& trace, const char* name) { return trace.findEvent(name); }
 
 std::string statusOf(const EpisodeRecord& r, const Landing& landing) {
-  if (r.setup_error) return "failed";
+  if (r.setup_error) return r.setup_refused ? "rejected" : "failed";
   if (r.result.rejected) return "rejected";
   if (r.result.episode.failure || !landing.end_failure.empty()) return "failed";
   const TargetSpec& t = r.episode.target;
@@ -41,7 +41,7 @@ std::string statusOf(const EpisodeRecord& r, const Landing& landing) {
 }
 
 std::string reasonOf(const EpisodeRecord& r, const JumpOutcome& o) {
-  if (r.setup_error) return "setup: " + *r.setup_error;
+  if (r.setup_error) return (r.setup_refused ? "terrain: " : "setup: ") + *r.setup_error;
   if (r.result.rejected) return *r.result.rejected;
   if (r.result.episode.failure) return r.result.episode.failure->reason + ": " + r.result.episode.failure->detail;
   if (!o.landing.end_failure.empty()) return o.landing.end_failure;

@@ -9,7 +9,8 @@
 
 namespace pronk {
 
-Policy makePolicy(const std::string& name, const pronk_factory& factory) {
+Policy makePolicy(const std::string& name, const pronk_factory& factory, const std::string& robot,
+                  std::vector<std::string>* warnings) {
   if (name == "ballistic") {
     if (factory.environment->prior_action == nullptr) {
       throw Error(std::string("--policy ballistic: environment '") + factory.name +
@@ -20,6 +21,12 @@ Policy makePolicy(const std::string& name, const pronk_factory& factory) {
     };
   }
   auto network = std::make_shared<const MlpPolicy>(loadPolicy(name));
+  const nlohmann::json& provenance = network->provenance();
+  if (warnings && !robot.empty() && provenance.is_object() && provenance.contains("robot") &&
+      provenance["robot"].is_string() && provenance["robot"].get<std::string>() != robot) {
+    warnings->push_back(name + " was trained on the " + provenance["robot"].get<std::string>() +
+                        "; this scenario's robot is the " + robot + " (a zero-shot transfer)");
+  }
   const bool aim = network->prior() && network->prior()->kind == kAimPriorKind;
   // An aim correction's network outputs an offset of the observation.
   const int outputs = aim ? factory.observation_size : factory.action_size;

@@ -59,6 +59,7 @@ EpisodeRecord RolloutPool::runCase(Worker& worker, size_t index, const EpisodeCa
     s = applyCase(setup_.scenario, episode, footprint_);
   } catch (const InputError& e) {
     record.setup_error = e.what();
+    record.setup_refused = dynamic_cast<const NoRoomForEdge*>(&e) != nullptr;
     record.result.task = {episode.target.x, episode.target.y, episode.target.z,
                           episode.target.yaw, episode.target.roll, episode.target.pitch};
     return record;
@@ -216,7 +217,9 @@ RolloutSetup environmentSetup(const Scenario& scenario, const PluginRegistry& re
   std::vector<ParamSetting> params = spec.params;
   for (const ParamSetting& p : overrides) setParam(params, p);
   setup.params = resolveParams(*setup.factory, params, spec.where, &scenario.platform);
-  if (!policy_name.empty()) setup.policy = makePolicy(policy_name, *setup.factory);
+  if (!policy_name.empty()) {
+    setup.policy = makePolicy(policy_name, *setup.factory, scenario.platform.name, &setup.warnings);
+  }
   return setup;
 }
 

@@ -168,8 +168,12 @@ std::vector<double> ElementReader::numbers(const char* name, const Range& each) 
 std::int64_t ElementReader::integer(const char* name, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
   const char* value = raw(name);
   if (!value) return fallback;
+  // Padding allowed, as around every number of the format (XML Schema's
+  // whitespace collapse for numbers).
   const char* begin = value;
   const char* end = value + std::strlen(value);
+  while (begin < end && isSpace(*begin)) ++begin;
+  while (end > begin && isSpace(end[-1])) --end;
   if (begin < end && *begin == '+') ++begin;
   std::int64_t v = 0;
   const auto [stop, error] = std::from_chars(begin, end, v);

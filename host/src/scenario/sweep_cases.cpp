@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <fmt/format.h>
+
 #include "pronk/error.h"
 #include "pronk/scenario.h"
 
@@ -146,11 +148,11 @@ void addStepPlatform(Scenario& s, const EpisodeCase& episode, const Footprint& f
   }
   const double lo = start_front + kStepEdgeClearance, hi = landing_rear - kStepEdgeClearance;
   if (!(distance > 0) || hi < lo) {
-    throw InputError(where, episode.label + ": target z = " + std::to_string(t.z) +
-                                " m needs a platform edge between the start and the target, but its feet and knees at the "
-                                "target stand " + std::to_string(std::max(0.0, lo - hi)) +
-                                " m too near the start's for one (each at least " + std::to_string(kStepEdgeClearance) +
-                                " m from the edge; terrain step_platforms)");
+    throw NoRoomForEdge(where, fmt::format("{}: target z = {:.3g} m needs a platform edge between the start and "
+                                           "the target, but its feet and knees at the target stand {:.3f} m too near "
+                                           "the start's for one (each at least {:.2f} m from the edge; terrain "
+                                           "step_platforms)",
+                                           episode.label, t.z, std::max(0.0, lo - hi), kStepEdgeClearance));
   }
   const PlatformSpec& p = s.platform;
   const double azimuth = p.base_yaw + std::atan2(t.y, t.x);
@@ -191,7 +193,21 @@ void setApexPlatform(Scenario& s, const EpisodeCase& episode) {
 }  // namespace
 
 Scenario applyCase(const Scenario& scenario, const EpisodeCase& episode, const Footprint& footprint) {
-  Scenario s = scenario;
+  // Everything but the lists of cases: a case needs none of them, and their
+  // copy for each of N cases made N cases take N^2.
+  Scenario s;
+  s.file = scenario.file;
+  s.name = scenario.name;
+  s.version = scenario.version;
+  s.platform = scenario.platform;
+  s.sim = scenario.sim;
+  s.terrain = scenario.terrain;
+  s.ground_height = scenario.ground_height;
+  s.ground = scenario.ground;
+  s.step_platforms = scenario.step_platforms;
+  s.apex_platform = scenario.apex_platform;
+  s.environment = scenario.environment;
+  s.render = scenario.render;
   double edge = kDefaultEdge;
   for (const auto& [variable, value] : episode.assignments) {
     if (variable == "terrain.edge") edge = value;

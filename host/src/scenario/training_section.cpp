@@ -14,15 +14,26 @@ namespace {
 constexpr std::int64_t kMaxIterations = 1'000'000;
 constexpr std::int64_t kMaxJumps = 1'000'000;    // per iteration
 constexpr std::int64_t kMaxLayerWidth = 4096;
+constexpr std::size_t kMaxLayers = 16;
+// A task region within what a legged robot can jump (m), far beyond the paper's.
+constexpr double kMaxReach = 10.0;
+constexpr double kMaxRise = 5.0;
 
 // "min max": two numbers (angles in the file's unit), min <= max.
-TrainingRange readRange(ElementReader& r, const char* name, bool angle) {
+// Within [-bound, bound] (rad for an angle).
+TrainingRange readRange(ElementReader& r, const char* name, bool angle, double bound) {
   if (!r.has(name)) return {};
   const std::vector<double> v = angle ? r.angles(name) : r.numbers(name);
   if (v.size() != 2) {
     r.fail(std::string(name) + " takes two numbers, min and max (got " + std::to_string(v.size()) + ")");
   }
   const double shown = angle ? 1 / r.angleScale() : 1;  // messages in the file's unit
+  for (double x : v) {
+    if (!(std::abs(x) <= bound)) {
+      r.fail(std::string(name) + ": " + formatNumber(x * shown) + " is beyond +-" + formatNumber(bound * shown) +
+             (angle ? "" : " m"));
+    }
+  }
   if (v[1] < v[0]) {
     r.fail(std::string(name) + ": max (" + formatNumber(v[1] * shown) + ") must be >= min (" +
            formatNumber(v[0] * shown) + ")");
@@ -34,6 +45,7 @@ std::vector<int> readLayerSizes(ElementReader& r, const char* name, const std::v
   if (!r.has(name)) return fallback;
   const std::vector<double> v = r.numbers(name);
   if (v.empty()) r.fail(std::string(name) + " needs at least one hidden layer size");
+  if (v.size() > kMaxLayers) r.fail(std::string(name) + ": at most " + std::to_string(kMaxLayers) + " hidden layers");
   std::vector<int> sizes;
   for (double d : v) {
     if (d != std::floor(d) || d < 1 || d > static_cast<double>(kMaxLayerWidth)) {
@@ -48,10 +60,10 @@ std::vector<int> readLayerSizes(ElementReader& r, const char* name, const std::v
 void readRegion(const XMLElement& e, const SourceFile& file, TrainingSpec& t) {
   ElementReader r(e, file);
   t.region_where = r.where();
-  t.x = readRange(r, "x", false);
-  t.y = readRange(r, "y", false);
-  t.z = readRange(r, "z", false);
-  t.yaw = readRange(r, "yaw", true);
+  t.x = readRange(r, "x", false, kMaxReach);
+  t.y = readRange(r, "y", false, kMaxReach);
+  t.z = readRange(r, "z", false, kMaxRise);
+  t.yaw = readRange(r, "yaw", true, M_PI);
   t.flat_share = r.number("flat_share", t.flat_share, Range::closed(0, 1));
   if (t.flat_share > 0 && t.z.min == 0 && t.z.max == 0) {
     r.fail("flat_share " + formatNumber(t.flat_share) + " needs a z range: every target of this region is flat");
@@ -72,11 +84,14 @@ void readPpo(const XMLElement& e, const SourceFile& file, TrainingSpec& t) {
   ElementReader r(e, file);
   t.epochs = static_cast<int>(r.integer("epochs", t.epochs, 1, 1000));
   t.minibatches = static_cast<int>(r.integer("minibatches", t.minibatches, 1, 100000));
-  t.learning_rate = r.number("learning_rate", t.learning_rate, Range::positive());
-  t.clip = r.number("clip", t.clip, Range::positive());
-  t.entropy_coefficient = r.number("entropy_coefficient", t.entropy_coefficient, Range::nonNegative());
-  t.desired_kl = r.number("desired_kl", t.desired_kl, Range::positive());
-  t.initial_std = r.number("initial_std", t.initial_std, Range::positive());
+  // Far beyond what trains, short of what overflows: (0, 1] for rates and the
+  // clip, [1e-6, 10] for the raw action's std.
+  const Range rate{0, 1, true, false};
+  t.learning_rate = r.number("learning_rate", t.learning_rate, rate);
+  t.clip = r.number("clip", t.clip, rate);
+  t.entropy_coefficient = r.number("entropy_coefficient", t.entropy_coefficient, Range::closed(0, 1));
+  t.desired_kl = r.number("desired_kl", t.desired_kl, rate);
+  t.initial_std = r.number("initial_std", t.initial_std, Range::closed(1e-6, 10));
   t.ppo_actor = r.boolean("actor", t.ppo_actor);
   r.rejectUnknownAttributes();
   r.children({});
@@ -102,8 +117,8 @@ void readGuidance(const XMLElement& e, const SourceFile& file, TrainingSpec& t) 
   t.hindsight_epochs = static_cast<int>(r.integer("hindsight_epochs", t.hindsight_epochs, 1, 10000));
   t.hindsight_samples = static_cast<int>(r.integer("hindsight_samples", t.hindsight_samples, 1, kMaxJumps));
   t.hindsight_minibatch = static_cast<int>(r.integer("hindsight_minibatch", t.hindsight_minibatch, 1, kMaxJumps));
-  t.hindsight_learning_rate = r.number("hindsight_learning_rate", t.hindsight_learning_rate, Range::positive());
-  t.hindsight_prior_step = r.number("hindsight_prior_step", t.hindsight_prior_step, Range::positive());
+  t.hindsight_learning_rate = r.number("hindsight_learning_rate", t.hindsight_learning_rate, Range{0, 1, true, false});
+  t.hindsight_prior_step = r.number("hindsight_prior_step", t.hindsight_prior_step, Range{0, 100, true, false});
   t.mirror = r.boolean("mirror", t.mirror);
   t.oversample = r.number("oversample", t.oversample, Range::closed(0.0, 0.9));
   r.rejectUnknownAttributes();

@@ -35,7 +35,7 @@ const pronk_factory& findFactory(const ControllerSpec& spec, const PluginRegistr
       for (const pronk_factory* f : lib->factories())
         if (f->kind == PRONK_FACTORY_CONTROLLER) known += std::string(", ") + f->name;
     throw InputError(spec.where, "no controller named '" + spec.factory + "' (built-in or in a loaded plugin); known: " +
-                                     known);
+                                     known + registry.skippedNote());
   }
   checkLibrary(*factory, "controller", spec.plugin, spec.where, registry);
   return *factory;
@@ -51,7 +51,8 @@ const pronk_factory& findEnvironment(const EnvironmentSpec& spec, const PluginRe
       for (const pronk_factory* f : lib->factories())
         if (f->kind == PRONK_FACTORY_ENVIRONMENT) known += (known.empty() ? "" : ", ") + std::string(f->name);
     throw InputError(spec.where, "no environment named '" + spec.factory + "' in the loaded plugins" +
-                                     (known.empty() ? std::string(" (none has one)") : "; known: " + known));
+                                     (known.empty() ? std::string(" (none has one)") : "; known: " + known) +
+                                     registry.skippedNote());
   }
   checkLibrary(*factory, "environment", spec.plugin, spec.where, registry);
   return *factory;

@@ -74,6 +74,10 @@ EpisodeResult runEpisode(World& world, Controller& controller, const EpisodeOpti
       if (options.record_samples || k == 0) trace.samples.push_back(sampleOf(world, s, torque, options.record_body_poses));
       if (!world.step(torque)) break;
       if (controller.finished()) break;
+      if (options.stop && options.stop->load()) {
+        trace.addEvent(world.time(), "stopped", "by a signal");
+        break;
+      }
       // Contact changes of the whole robot: all feet off, then any foot back on.
       bool any_contact = false;
       for (uint8_t c : world.state().foot_in_contact) any_contact = any_contact || c;

@@ -1,16 +1,19 @@
 #include "pronk/trace.h"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <iomanip>
 
 #include "pronk/error.h"
+#include "pronk/file_io.h"
 
 namespace pronk {
 
 void writeTraceCsv(const Trace& trace, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw Error(path + ": cannot write the trace file");
+  // Composed whole, then written beside and renamed: a failed write leaves no
+  // trace cut mid-number.
+  std::ostringstream out;
   out << std::setprecision(9);
   out << "time,base_x,base_y,base_z,base_qw,base_qx,base_qy,base_qz,com_x,com_y,com_z,com_vx,com_vy,com_vz";
   for (const std::string& j : trace.joint_names) out << ",q_" << j;
@@ -35,7 +38,7 @@ void writeTraceCsv(const Trace& trace, const std::string& path) {
     }
     out << '\n';
   }
-  if (!out) throw Error(path + ": writing the trace failed");
+  replaceFileAtomically(path, out.str(), "trace file");
 }
 
 namespace {
@@ -88,6 +91,10 @@ Trace readTraceCsv(const std::string& path) {
       }
       if (used != f[i].size() || f[i].empty()) {
         throw InputError({path, number}, "column '" + header[i] + "': '" + f[i] + "' is not a number");
+      }
+      // A recorded state is finite: nan or inf would reach the kinematics as a pose.
+      if (!std::isfinite(v[i])) {
+        throw InputError({path, number}, "column '" + header[i] + "': '" + f[i] + "' is not a finite number");
       }
     }
     TraceSample s;

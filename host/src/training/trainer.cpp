@@ -295,6 +295,16 @@ class Trainer {
       if (!row.validated) return finish(out, true);
       finishRow(row);
     }
+    // A validation that a signal cut short is run on resuming, into its
+    // iteration's row: the validation of the end is never skipped.
+    if (done_ > 0 && spec_.validation_count > 0 && validationDue(done_) && !log_.empty() &&
+        !training_files::rowValidated(log_.back(), penalty_names_)) {
+      JumpSetFigures figures;
+      if (!validate(figures)) return finish(out, true);
+      training_files::setRowValidation(log_.back(), figures, penalty_names_);
+      last_validation_ = training_files::lastValidation(log_, penalty_names_);
+      training_files::writeLog(paths_.log, log_, penalty_names_);
+    }
     for (int k = done_ + 1; k <= spec_.iterations; ++k) {
       const bool whole = iterate(k);
       if (!whole || stopRequested()) return finish(out, true);
@@ -325,6 +335,7 @@ class Trainer {
   }
 
   bool stopRequested() const { return stop_ && stop_->load(); }
+  bool validationDue(int k) const { return k % spec_.validate_every == 0 || k == spec_.iterations; }
 
   TrainingIteration newRow(int k) const {
     TrainingIteration row;
@@ -489,6 +500,21 @@ class Trainer {
     }
     const PpoUpdateStats s = learner_->update(batch);
     if (spec_.hindsight) fitHindsight(row, used, achieved, taken, draws, observations);
+    // A diverged fit (a learning rate far too high) stops the run here, before
+    // anything of it is written: the last checkpoint and policy file stay good.
+    const bool warmed = spec_.critic_warmup && learner_->iteration() == 1;
+    for (const auto& [name, loss] : {std::pair{"PPO's policy loss", s.policy_loss}, std::pair{"PPO's value loss", s.value_loss},
+                                     std::pair{"the critic warm-up's loss", warmed ? row.critic_warmup_loss : 0.0},
+                                     std::pair{"the hindsight fit's loss", spec_.hindsight && hindsight_.size() > 0
+                                                                              ? row.hindsight_loss
+                                                                              : 0.0}}) {
+      if (!std::isfinite(loss)) {
+        throw Error(scenario_.file + ": iteration " + std::to_string(k) + ": " + name + " is " + std::to_string(loss) +
+                    ": the fit diverged (lower <ppo learning_rate> or <guidance hindsight_learning_rate>); stopped "
+                    "before writing anything of it: " + paths_.checkpoint + " and " + paths_.policy +
+                    " hold the last good state, if one was written");
+      }
+    }
     row.update_s = secondsSince(t1);
     row.policy_loss = s.policy_loss;
     row.value_loss = s.value_loss;
@@ -504,7 +530,7 @@ class Trainer {
     jumps_ += n;
     row.jumps = jumps_;
 
-    if (spec_.validation_count > 0 && (k % spec_.validate_every == 0 || k == spec_.iterations)) {
+    if (spec_.validation_count > 0 && validationDue(k)) {
       const auto t2 = Clock::now();
       row.validated = validate(row.validation);
       row.validation_s = secondsSince(t2);

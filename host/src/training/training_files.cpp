@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "pronk/error.h"
+#include "pronk/file_io.h"
 
 namespace pronk::training_files {
 
@@ -81,6 +82,28 @@ std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<js
   return std::nullopt;
 }
 
+bool rowValidated(const std::vector<json>& row, const std::vector<std::string>& penalties) {
+  const std::vector<std::string> columns = logColumns(penalties);
+  const size_t at = static_cast<size_t>(std::find(columns.begin(), columns.end(), "validated") - columns.begin());
+  return row.size() == columns.size() && row[at].is_number() && row[at].get<double>() == 1;
+}
+
+void setRowValidation(std::vector<json>& row, const JumpSetFigures& v, const std::vector<std::string>& penalties) {
+  const std::vector<std::string> columns = logColumns(penalties);
+  if (row.size() != columns.size()) throw Error("setRowValidation: a row of " + std::to_string(row.size()) + " values");
+  const auto set = [&](const std::string& name, json value) {
+    row[static_cast<size_t>(std::find(columns.begin(), columns.end(), name) - columns.begin())] = std::move(value);
+  };
+  set("validated", 1);
+  set("validation_jumps", v.jumps);
+  set("validation_landed", v.landed);
+  set("validation_failed", v.failed);
+  set("validation_rejected", v.rejected);
+  set("validation_error_median_m", value(v.error_median));
+  set("validation_error_mean_m", value(v.error_mean));
+  set("validation_within_0.2m", value(v.within_02));
+}
+
 void writeLog(const std::string& path, const std::vector<std::vector<json>>& rows,
               const std::vector<std::string>& penalties) {
   std::string text;
@@ -115,14 +138,7 @@ json rngJson(const Rng& rng) {
 }
 
 void writeText(const std::string& path, const std::string& text, const std::string& what) {
-  const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!(out << text) || !out.flush()) throw Error("cannot write the " + what + " " + partial);
-  }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) throw Error("cannot replace the " + what + " " + path + ": " + ec.message());
+  replaceFileAtomically(path, text, what);
 }
 
 void writeJson(const std::string& path, const json& doc, const std::string& what) {
@@ -130,12 +146,25 @@ void writeJson(const std::string& path, const json& doc, const std::string& what
 }
 
 json readJson(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, "cannot read the " + what);
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = readInputFile(path, what);  // a regular file, bounded in size
+  // Bounded in memory and depth too: numbers take about their text's size as a
+  // document, but "[[],[],...]" 30 times its size; the recursive copies and
+  // destructors of a deep document exhaust the stack.
+  constexpr int kMaxDepth = 64;
+  const std::size_t bound = 4 * text.size() + (std::size_t(1) << 20);
+  std::size_t memory = 0;
+  const json::parser_callback_t bounded = [&](int depth, json::parse_event_t event, json&) {
+    if (depth > kMaxDepth) throw InputError({path, 0}, "nested more than " + std::to_string(kMaxDepth) + " levels deep");
+    using E = json::parse_event_t;
+    memory += event == E::object_start || event == E::array_start ? 160 : event == E::key ? 96 : 32;
+    if (memory > bound) {
+      throw InputError({path, 0}, "holds more values than its size allows: reading it would take more than " +
+                                      std::to_string(bound >> 20) + " MiB");
+    }
+    return true;
+  };
   try {
-    return json::parse(text.str());
+    return json::parse(text, bounded);
   } catch (const json::exception& e) {
     throw InputError({path, 0}, "not a " + what + " (invalid JSON: " + e.what() + ")");
   }

@@ -25,6 +25,10 @@ std::vector<nlohmann::json> logValues(const TrainingIteration& row);
 // The last validated row of a log, as far as its validation goes.
 std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<nlohmann::json>>& rows,
                                                 const std::vector<std::string>& penalties);
+// Whether a row holds a validation, and the row given `figures` as its validation.
+bool rowValidated(const std::vector<nlohmann::json>& row, const std::vector<std::string>& penalties);
+void setRowValidation(std::vector<nlohmann::json>& row, const JumpSetFigures& figures,
+                      const std::vector<std::string>& penalties);
 // Writes the CSV: the header, then one line per row (null as "nan").
 void writeLog(const std::string& path, const std::vector<std::vector<nlohmann::json>>& rows,
               const std::vector<std::string>& penalties);
