@@ -56,6 +56,27 @@ SceneRenderer::SceneRenderer(int width, int height, const RobotDescription& robo
       drawables_.push_back({int(b), v.pose_body, mesh, v.rgba});
     }
   }
+  // The root body's extent in its own frame, from its visuals' bounding boxes.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
+  for (const Drawable& d : drawables_) {
+    if (d.body != 0) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d c((corner & 1) ? d.mesh->max_corner.x() : d.mesh->min_corner.x(),
+                              (corner & 2) ? d.mesh->max_corner.y() : d.mesh->min_corner.y(),
+                              (corner & 4) ? d.mesh->max_corner.z() : d.mesh->min_corner.z());
+      const Eigen::Vector3d p = d.pose_body * c;
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  if (lo.allFinite() && hi.allFinite() && (hi - lo).minCoeff() > 0) {
+    // 3 cm deep, standing 1 cm proud of the front face, 80 % of its width and height.
+    const Eigen::Vector3d size(0.03, 0.8 * (hi.y() - lo.y()), 0.8 * (hi.z() - lo.z()));
+    Eigen::Affine3d cap = Eigen::Affine3d::Identity();
+    cap.translation() = Eigen::Vector3d(hi.x() + 0.01 - size.x() / 2, (lo.y() + hi.y()) / 2, (lo.z() + hi.z()) / 2);
+    cap.scale(size);
+    front_cap_ = cap;
+  }
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -226,6 +247,10 @@ void SceneRenderer::render(const Camera& camera, const SceneMarkers& markers, co
   for (const Drawable& d : drawables_) {
     if (d.body >= int(frame.body_poses.size())) continue;
     drawMesh(*d.mesh, Eigen::Affine3d((frame.body_poses[d.body] * d.pose_body).matrix()), d.rgba);
+  }
+  if (front_cap_ && !frame.body_poses.empty()) {
+    drawMesh(unit_box_, Eigen::Affine3d(frame.body_poses[0].matrix()) * *front_cap_,
+             Eigen::Vector4d(kFrontColour.x(), kFrontColour.y(), kFrontColour.z(), 1));
   }
   // Feet on the ground get a green disc under them.
   for (size_t f = 0; f < frame.foot_positions.size() && f < frame.foot_in_contact.size(); ++f) {

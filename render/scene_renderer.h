@@ -39,6 +39,7 @@ struct SceneMarkers {
 inline const Eigen::Vector3d kTargetColour{0.9, 0.08, 0.08};
 inline const Eigen::Vector3d kSkyColour{0.72, 0.82, 0.93};
 inline const Eigen::Vector3d kArcColour{0.95, 0.65, 0.1};  // planned CoM arc, predicted landing
+inline const Eigen::Vector3d kFrontColour{0.1, 0.8, 0.9};  // the trunk's front face: which way the robot looks
 
 class SceneRenderer {
  public:
@@ -64,6 +65,9 @@ class SceneRenderer {
     Eigen::Vector4d rgba;
   };
   void drawMesh(const TriangleMesh& mesh, const Eigen::Affine3d& pose, const Eigen::Vector4d& rgba);
+  // A cap on the front face of the root body's visuals (its +x end), in the
+  // root body's frame; none when the root body has no visual.
+  std::optional<Eigen::Affine3d> front_cap_;
   void drawGround(const Eigen::Vector3d& centre);
   // The robot's soft blob shadows from the sun on flat ground (none with step platforms).
   void drawShadow(const FrameState& frame);

@@ -246,7 +246,9 @@ std::string twistPlot(const std::vector<JumpRow>& rows, const PlotContext& c, co
   Series failed{"failed", std::string("using 1:(0) with points pt 2 ps 1.6 lw 2 lc rgb \"") + kFailedColour + "\"", "", {}};
   double rmax = 1;
   double sum = 0, max = 0;
+  bool behind = false;  // a target yaw beyond +-90 deg: the lower half is needed
   for (const JumpRow* r : sorted) {
+    behind = behind || std::abs(r->target_yaw * kDeg) > 90.5;
     if (r->landed() && std::isfinite(r->error_yaw_deg)) {
       landed.rows.push_back({r->target_yaw * kDeg, r->error_yaw_deg});
       rmax = std::max(rmax, r->error_yaw_deg);
@@ -269,15 +271,25 @@ std::string twistPlot(const std::vector<JumpRow>& rows, const PlotContext& c, co
   g.line("unset border");
   g.line("unset xtics");
   g.line("unset ytics");
-  g.line("set size square");
+  // Radial tics on a round step, the outer circle a step beyond the largest error,
+  // so that the last radius label clears the angle labels.
+  const double step = rmax <= 2 ? 0.5 : rmax <= 5 ? 1 : rmax <= 10 ? 2 : rmax <= 25 ? 5 : 10;
+  const double outer = step * (std::floor(rmax / step) + 1);
+  if (behind) {
+    g.line("set size square");
+  } else {
+    // Every twist is within +-90 deg: the upper half (ahead, 0 at the top) only.
+    g.line("set size ratio -1");
+    g.line("set xrange [" + format("%g", -1.02 * outer) + ":" + format("%g", 1.02 * outer) + "]");
+    g.line("set yrange [" + format("%g", -0.04 * outer) + ":" + format("%g", 1.02 * outer) + "]");
+  }
   g.line("set grid polar 30 lt 1 lw 1 lc rgb \"gray75\"");
   g.line("set grid r");
   // Signed yaw labels: left turns positive, right turns negative.
   g.line("set ttics (\"0\" 0, \"30\" 30, \"60\" 60, \"90\" 90, \"120\" 120, \"150\" 150, \"180\" 180, "
          "\"-150\" 210, \"-120\" 240, \"-90\" 270, \"-60\" 300, \"-30\" 330)");
-  g.line("set rtics scale 0.5");
-  g.line("set rrange [0:" + format("%.3g", 1.1 * rmax) + "]");
-  g.line("set rlabel \"yaw error [deg]\"");
+  g.line("set rtics " + format("%g", step) + " scale 0.5");
+  g.line("set rrange [0:" + format("%g", outer) + "]");
   g.line(plotCommand(g, {landed, failed}));
   render(g, (fs::path(dir) / "twist_yaw.gp").string());
   return png;
