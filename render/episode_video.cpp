@@ -65,6 +65,7 @@ void drawLegend(std::vector<uint8_t>& rgba, int width, int height, TextOverlay& 
   if (!markers.planned_arc.empty()) entries.push_back({markers.arc_label, kArcColour, true});
   if (markers.predicted_landing) entries.push_back({markers.landing_label, kArcColour, false});
   if (entries.empty()) return;
+  entries.push_back({"robot's front", kFrontColour, false});
   int text_w = 0;
   for (const Entry& e : entries) text_w = std::max(text_w, small.measure(e.label));
   const int line_h = small.lineHeight() + pad / 3, swatch = small.lineHeight() * 2 / 3;

@@ -70,10 +70,12 @@ SceneRenderer::SceneRenderer(int width, int height, const RobotDescription& robo
     }
   }
   if (lo.allFinite() && hi.allFinite() && (hi - lo).minCoeff() > 0) {
-    // 3 cm deep, standing 1 cm proud of the front face, 80 % of its width and height.
-    const Eigen::Vector3d size(0.03, 0.8 * (hi.y() - lo.y()), 0.8 * (hi.z() - lo.z()));
+    // The front sixth of the trunk (at least 4 cm), 2 mm proud of its faces, so
+    // that it reads from the side, from above and from ahead.
+    const double depth = std::max(0.04, (hi.x() - lo.x()) / 6);
+    const Eigen::Vector3d size(depth + 0.002, hi.y() - lo.y() + 0.004, hi.z() - lo.z() + 0.004);
     Eigen::Affine3d cap = Eigen::Affine3d::Identity();
-    cap.translation() = Eigen::Vector3d(hi.x() + 0.01 - size.x() / 2, (lo.y() + hi.y()) / 2, (lo.z() + hi.z()) / 2);
+    cap.translation() = Eigen::Vector3d(hi.x() + 0.002 - size.x() / 2, (lo.y() + hi.y()) / 2, (lo.z() + hi.z()) / 2);
     cap.scale(size);
     front_cap_ = cap;
   }

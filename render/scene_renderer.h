@@ -65,7 +65,7 @@ class SceneRenderer {
     Eigen::Vector4d rgba;
   };
   void drawMesh(const TriangleMesh& mesh, const Eigen::Affine3d& pose, const Eigen::Vector4d& rgba);
-  // A cap on the front face of the root body's visuals (its +x end), in the
+  // A cap over the front end of the root body's visuals (its +x end), in the
   // root body's frame; none when the root body has no visual.
   std::optional<Eigen::Affine3d> front_cap_;
   void drawGround(const Eigen::Vector3d& centre);

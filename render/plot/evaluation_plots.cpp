@@ -237,21 +237,19 @@ std::string heightMaps(const std::vector<JumpRow>& rows, const PlotContext& c, c
 
 std::string twistPlot(const std::vector<JumpRow>& rows, const PlotContext& c, const std::string& dir) {
   const std::string png = (fs::path(dir) / "twist_yaw.png").string();
-  GnuplotScript g(png, 900, 860);
+  GnuplotScript g(png, 900, 560);
   commonStyle(g);
   std::vector<const JumpRow*> sorted;
   for (const JumpRow& r : rows) sorted.push_back(&r);
   std::sort(sorted.begin(), sorted.end(), [](const JumpRow* a, const JumpRow* b) { return a->target_yaw < b->target_yaw; });
   Series landed{"landed", "using 1:2 with linespoints pt 7 ps 0.9 lw 1.5 lc rgb \"#2b83ba\"", "", {}};
   Series failed{"failed", std::string("using 1:(0) with points pt 2 ps 1.6 lw 2 lc rgb \"") + kFailedColour + "\"", "", {}};
-  double rmax = 1;
   double sum = 0, max = 0;
-  bool behind = false;  // a target yaw beyond +-90 deg: the lower half is needed
+  double yaw_lo = 0, yaw_hi = 0;
   for (const JumpRow* r : sorted) {
-    behind = behind || std::abs(r->target_yaw * kDeg) > 90.5;
+    yaw_lo = std::min(yaw_lo, r->target_yaw * kDeg), yaw_hi = std::max(yaw_hi, r->target_yaw * kDeg);
     if (r->landed() && std::isfinite(r->error_yaw_deg)) {
       landed.rows.push_back({r->target_yaw * kDeg, r->error_yaw_deg});
-      rmax = std::max(rmax, r->error_yaw_deg);
       sum += r->error_yaw_deg;
       max = std::max(max, r->error_yaw_deg);
     } else if (r->status != "rejected") {
@@ -263,33 +261,15 @@ std::string twistPlot(const std::vector<JumpRow>& rows, const PlotContext& c, co
   const std::string stats = landed.rows.empty() ? "none landed"
                                                 : "yaw error mean " + format("%.1f", sum / landed.rows.size()) +
                                                       " deg, max " + format("%.1f", max) + " deg";
-  g.line("set title " + quoted(headline(c, rows.size(), "in-place twists") + "\n" + stats +
-                               "; angle: target yaw (0 = ahead, left positive), radius: yaw error [deg]"));
-  g.line("set polar");
-  g.line("set angles degrees");
-  g.line("set theta top ccw");
-  g.line("unset border");
-  g.line("unset xtics");
-  g.line("unset ytics");
-  // Radial tics on a round step, the outer circle a step beyond the largest error,
-  // so that the last radius label clears the angle labels.
-  const double step = rmax <= 2 ? 0.5 : rmax <= 5 ? 1 : rmax <= 10 ? 2 : rmax <= 25 ? 5 : 10;
-  const double outer = step * (std::floor(rmax / step) + 1);
-  if (behind) {
-    g.line("set size square");
-  } else {
-    // Every twist is within +-90 deg: the upper half (ahead, 0 at the top) only.
-    g.line("set size ratio -1");
-    g.line("set xrange [" + format("%g", -1.02 * outer) + ":" + format("%g", 1.02 * outer) + "]");
-    g.line("set yrange [" + format("%g", -0.04 * outer) + ":" + format("%g", 1.02 * outer) + "]");
-  }
-  g.line("set grid polar 30 lt 1 lw 1 lc rgb \"gray75\"");
-  g.line("set grid r");
-  // Signed yaw labels: left turns positive, right turns negative.
-  g.line("set ttics (\"0\" 0, \"30\" 30, \"60\" 60, \"90\" 90, \"120\" 120, \"150\" 150, \"180\" 180, "
-         "\"-150\" 210, \"-120\" 240, \"-90\" 270, \"-60\" 300, \"-30\" 330)");
-  g.line("set rtics " + format("%g", step) + " scale 0.5");
-  g.line("set rrange [0:" + format("%g", outer) + "]");
+  // Error against target yaw on plain axes, so that the twists' range fills the width.
+  g.line("set title " + quoted(headline(c, rows.size(), "in-place twists") + "\n" + stats));
+  g.line("set xlabel \"target yaw [deg] (left positive)\"");
+  g.line("set ylabel \"yaw error [deg]\"");
+  g.line("set xrange [" + format("%g", yaw_lo - 5) + ":" + format("%g", yaw_hi + 5) + "]");
+  g.line("set xtics 30");
+  g.line("set yrange [0:" + format("%.3g", std::max(0.5, 1.15 * max)) + "]");
+  g.line("set grid");
+  g.line("set key below");
   g.line(plotCommand(g, {landed, failed}));
   render(g, (fs::path(dir) / "twist_yaw.gp").string());
   return png;

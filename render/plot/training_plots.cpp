@@ -31,8 +31,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
 // error at iterations 0 and 306. Said in the figure's text: on an axis with
 // them, pronk's few thousand jumps would take a fifth of the width.
 constexpr const char* kPaperRun =
-    "the paper's run: 50/80/90/95 % of its final reward after 0.57/1.47/2.21/3.69 M jumps, its end at 8.19 M; "
-    "its forward-only run's exploring mean error 87 cm at the start, 18 cm after 1.25 M jumps";
+    "the paper's run: 50/80/90/95 % of its final reward after 0.57/1.47/2.21/3.69 M jumps, its end at 8.19 M;\n"
+    "its forward-only run's exploring mean error: 87 cm at the start, 18 cm after 1.25 M jumps";
 
 }  // namespace
 
