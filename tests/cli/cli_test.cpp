@@ -256,7 +256,7 @@ TEST(Cli, PluginsListsTheGuidedJumpFactories) {
   EXPECT_NE(o.output.find("guided_jump"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("jump"), std::string::npos);
   EXPECT_NE(o.output.find("ABI 1.6"), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("declares 60 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
+  EXPECT_NE(o.output.find("declares 62 metrics (14 reward cost terms, 7 times), 6 task numbers, 2 video markers"),
             std::string::npos)
       << o.output;
   // Each parameter with its default, the range the host checks and its unit (docs/plugin-abi.md).

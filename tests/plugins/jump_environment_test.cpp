@@ -74,6 +74,9 @@ TEST_F(JumpEnvironment, PriorActionIsAFeasiblePlanTheFilterAccepts) {
   EXPECT_GT(robot_.metrics["predicted_landing_x"], 0.1);
   EXPECT_LT(robot_.metrics["predicted_landing_x"], 0.4 + 1e-9);
   EXPECT_NEAR(robot_.metrics["predicted_landing_y"], 0.0, 1e-9);
+  // Carried on by that stop, the CoM comes to rest at the target: the video's ball.
+  EXPECT_NEAR(robot_.metrics["predicted_rest_x"], 0.4, 0.01);
+  EXPECT_NEAR(robot_.metrics["predicted_rest_y"], 0.0, 1e-9);
 }
 
 TEST_F(JumpEnvironment, SafetyFilterRejectsAnImpossibleUpJumpBeforeItRuns) {

@@ -121,6 +121,12 @@ const MetricTable& metricTable() {
          nullptr},
         {"predicted_landing_z", PRONK_METRIC_VALUE, "m", "the plan's landing height above the take-off surface",
          nullptr, nullptr},
+        {"predicted_rest_x", PRONK_METRIC_VALUE, "m",
+         "where the plan's CoM comes to rest: its landing point carried on by the landing's stop, start frame",
+         nullptr, nullptr},
+        {"predicted_rest_y", PRONK_METRIC_VALUE, "m",
+         "where the plan's CoM comes to rest: its landing point carried on by the landing's stop, start frame",
+         nullptr, nullptr},
         {"planned_lift_off_x", PRONK_METRIC_VALUE, "m", "the plan's lift-off CoM, start frame", nullptr, nullptr},
         {"planned_lift_off_y", PRONK_METRIC_VALUE, "m", "the plan's lift-off CoM, start frame", nullptr, nullptr},
         {"planned_lift_off_z", PRONK_METRIC_VALUE, "m", "the plan's lift-off CoM, start frame", nullptr, nullptr},
@@ -192,8 +198,9 @@ const pronk_marker_decl kMarkers[] = {
     {sizeof(pronk_marker_decl), PRONK_MARKER_ARC, "planned flight",
      {"planned_lift_off_x", "planned_lift_off_y", "planned_lift_off_z", "planned_lift_off_vx", "planned_lift_off_vy",
       "planned_lift_off_vz", "planned_flight_time"}},
+    // Where the plan comes to rest, as the target marks where the trunk should.
     {sizeof(pronk_marker_decl), PRONK_MARKER_POINT, "predicted landing",
-     {"predicted_landing_x", "predicted_landing_y", "predicted_landing_z", nullptr, nullptr, nullptr, nullptr}},
+     {"predicted_rest_x", "predicted_rest_y", "predicted_landing_z", nullptr, nullptr, nullptr, nullptr}},
 };
 
 const pronk_environment_ops kOps = {sizeof(pronk_environment_ops), reset, act, step, finish, destroy, priorAction};

@@ -311,6 +311,9 @@ void JumpEnvironment::act(const double* raw_action) {
   metric("predicted_landing_x", landing ? landing->x() : NAN);
   metric("predicted_landing_y", landing ? landing->y() : NAN);
   metric("predicted_landing_z", landing ? landing->z() - standing_height_ : NAN);
+  const Eigen::Vector2d stop = landing && t_fall ? landingStop()(flight.velocity(*t_fall)) : Eigen::Vector2d(NAN, NAN);
+  metric("predicted_rest_x", landing ? landing->x() + stop.x() : NAN);
+  metric("predicted_rest_y", landing ? landing->y() + stop.y() : NAN);
   metric("action_excess", mapped.totalRawExcess());
   const jump::ActionVector physical = jump::toVector(mapped.action);
   for (int i = 0; i < kActionSize; ++i) {
