@@ -266,19 +266,30 @@ void SceneRenderer::render(const Camera& camera, const SceneMarkers& markers, co
     drawMesh(unit_cylinder_, disc, Eigen::Vector4d(0.1, 0.75, 0.25, 1));
     glEnable(GL_LIGHTING);
   }
-  // The planned CoM arc and its predicted landing go on top of everything: the
-  // arc runs through the trunk (it is the CoM's path), and for short jumps the
-  // robot's own body would hide all of it.
-  glDisable(GL_DEPTH_TEST);
+  // The planned CoM arc: solid where it is in sight, dashed and thin over what
+  // hides it, as hidden lines are drawn. It is the CoM's path, so it runs
+  // through the trunk; for short jumps the robot's own body would hide all of it.
   if (markers.planned_arc.size() > 1) {
     glDisable(GL_LIGHTING);
-    glLineWidth(3);
     glColor3d(kArcColour.x(), kArcColour.y(), kArcColour.z());
-    glBegin(GL_LINE_STRIP);
-    for (const Eigen::Vector3d& p : markers.planned_arc) glVertex3d(p.x(), p.y(), p.z());
-    glEnd();
+    const auto strip = [&] {
+      glBegin(GL_LINE_STRIP);
+      for (const Eigen::Vector3d& p : markers.planned_arc) glVertex3d(p.x(), p.y(), p.z());
+      glEnd();
+    };
+    glLineWidth(3);
+    strip();
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_LINE_STIPPLE);
+    glLineStipple(2, 0x0F0F);
+    glLineWidth(1.5);
+    strip();
+    glDisable(GL_LINE_STIPPLE);
+    glEnable(GL_DEPTH_TEST);
     glEnable(GL_LIGHTING);
   }
+  // The predicted landing goes on top of everything: the robot lands on it.
+  glDisable(GL_DEPTH_TEST);
   if (markers.predicted_landing) {
     Eigen::Affine3d dot = Eigen::Affine3d::Identity();
     dot.translation() = *markers.predicted_landing;
