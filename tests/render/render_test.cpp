@@ -118,6 +118,28 @@ TEST(Render, PlannedArcShowsDashedThroughTheRobot) {
   EXPECT_EQ(arcPixelsOn(-0.1, 0.1).first, 0);
 }
 
+TEST(Render, TheTrunksFrontEndIsMarkedSoThatTheHeadingReads) {
+  // From above, the front sixth of the trunk is in the front colour (lit, so
+  // its hue is compared: blue and green well above red), its rear end is not.
+  Episode e(0.05);
+  const int w = 320, h = 240;
+  SceneRenderer renderer(w, h, e.robot, e.terrain);
+  const TraceSample& s = e.trace.samples.back();
+  Camera camera;
+  camera.eye = s.base_position + Eigen::Vector3d(0, -0.01, 1.2);
+  camera.target = s.base_position;
+  std::vector<uint8_t> rgba;
+  renderer.render(camera, SceneMarkers{}, {s.body_poses, s.foot_position, s.foot_in_contact}, rgba);
+  const Eigen::Isometry3d& trunk = s.body_poses[0];
+  Eigen::Vector2d front, rear;
+  ASSERT_TRUE(project(camera, w, h, trunk * Eigen::Vector3d(0.17, 0, 0.06), front));
+  ASSERT_TRUE(project(camera, w, h, trunk * Eigen::Vector3d(-0.17, 0, 0.06), rear));
+  const Eigen::Vector3d f = pixel(rgba, w, front), r = pixel(rgba, w, rear);
+  EXPECT_GT(f.z(), f.x() + 0.25) << f.transpose();
+  EXPECT_GT(f.y(), f.x() + 0.2) << f.transpose();
+  EXPECT_LT(r.z(), r.x() + 0.15) << r.transpose();
+}
+
 // The apex platform of a height test appears mid-flight: the renderer draws
 // the terrain it is given from the next frame on (EpisodeVideo hands it the
 // change's terrain from the change's time on; that switch is not tested here).

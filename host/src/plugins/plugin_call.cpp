@@ -18,6 +18,9 @@ struct CallOnThread {
 thread_local CallOnThread t_call;
 
 constexpr int kFatalSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
+constexpr int kFatalSignalCount = sizeof kFatalSignals / sizeof kFatalSignals[0];
+// What handled each before (the default, or a sanitizer's report): it gets the signal next.
+struct sigaction g_previous[kFatalSignalCount];
 
 // Only write(2) here: the handler may run anywhere.
 void say(const char* text) {
@@ -55,7 +58,10 @@ extern "C" void onFatalSignal(int signal) {
     say(")");
     sayCall(c);
   }
-  // The default action, as if no handler had been there (SA_RESETHAND restored it).
+  // Then what handled it before: the default action, or a sanitizer's report.
+  for (int i = 0; i < kFatalSignalCount; ++i) {
+    if (kFatalSignals[i] == signal) sigaction(signal, &g_previous[i], nullptr);
+  }
   std::raise(signal);
 }
 
@@ -76,11 +82,14 @@ PluginCallScope::PluginCallScope(const char* plugin, const char* factory, const 
 PluginCallScope::~PluginCallScope() { t_call = {previous_[0], previous_[1], previous_[2]}; }
 
 void reportPluginCrashes() {
+  static bool installed = false;  // twice would take its own handler for the one before
+  if (installed) return;
+  installed = true;
   struct sigaction action {};
   action.sa_handler = onFatalSignal;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESETHAND | SA_NODEFER;
-  for (int s : kFatalSignals) sigaction(s, &action, nullptr);
+  for (int i = 0; i < kFatalSignalCount; ++i) sigaction(kFatalSignals[i], &action, &g_previous[i]);
   std::atexit(onExit);
 }
 
