@@ -36,8 +36,8 @@ aliengo_robust_omni|1|$aliengo|scenarios/eval/aliengo_robust_fwd.xml scenarios/e
 aliengo_transfer_omni|1|$go1|scenarios/eval/aliengo_transfer_fwd.xml
 aliengo_region_omni|9|$aliengo|scenarios/eval/aliengo_flat_1000.xml scenarios/eval/aliengo_heights.xml
 aliengo_region_planner|9|ballistic|scenarios/eval/aliengo_flat_1000.xml scenarios/eval/aliengo_heights.xml
-go1_edges_omni|5|$go1|scenarios/eval/go1_heights_edges.xml scenarios/eval/go1_edges_random.xml
-go1_edges_planner|5|ballistic|scenarios/eval/go1_heights_edges.xml scenarios/eval/go1_edges_random.xml
+go1_edges_omni|2|$go1|scenarios/eval/go1_heights_edges.xml scenarios/eval/go1_edges_random.xml
+go1_edges_planner|2|ballistic|scenarios/eval/go1_heights_edges.xml scenarios/eval/go1_edges_random.xml
 aliengo_edges_omni|4|$aliengo|scenarios/eval/aliengo_edges_random.xml
 aliengo_edges_planner|4|ballistic|scenarios/eval/aliengo_edges_random.xml
 robot_vendor_go1_planner|2|ballistic|tests/robots/vendor_go1/flat_200.xml --sweep flat
