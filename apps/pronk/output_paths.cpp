@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "commands.h"
+#include "pronk/file_io.h"
 
 namespace pronk::cli {
 
@@ -26,10 +27,9 @@ std::string kindOf(const fs::file_status& s) {
 }  // namespace
 
 void checkOutputFile(const std::string& path, const std::string& flag) {
+  if (replaceable(path)) return;  // what every writer takes (pronk/file_io.h)
   std::error_code ec;
-  // A symbolic link is replaced by the rename, never followed: only what is there counts.
   const fs::file_status there = fs::symlink_status(path, ec);
-  if (ec || !fs::exists(there) || fs::is_regular_file(there) || fs::is_symlink(there)) return;
   throw UsageError(flag + " " + path + ": " + kindOf(there) + " is there; pronk writes a regular file and will not "
                    "replace it: give a file name");
 }

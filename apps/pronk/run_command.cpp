@@ -8,14 +8,14 @@
 #include <Eigen/Geometry>
 
 #include "commands.h"
-#include "stop_signal.h"
-#include "pronk/file_io.h"
 #include "output_paths.h"
 #include "pronk/controller_factory.h"
-#include "run_jumps.h"
 #include "pronk/episode.h"
+#include "pronk/file_io.h"
 #include "pronk/world.h"
 #include "render/episode_video.h"
+#include "run_jumps.h"
+#include "stop_signal.h"
 #include "video_settings.h"
 
 namespace pronk::cli {

@@ -49,15 +49,18 @@ inline std::string readInputFile(const std::string& path, const std::string& wha
   return text.str();
 }
 
-// Throws Error "will not replace the <what> PATH: ..." when something other
-// than a regular file is there: a directory, a device node, a FIFO or a socket
-// is never replaced (a symbolic link is: the rename replaces the link, never
-// what it points to).
-inline void checkReplaceable(const std::string& path, const std::string& what) {
+// Whether a writer may replace what is at PATH: nothing, a regular file or a
+// symbolic link (the rename replaces the link, never what it points to); a
+// directory, a device node, a FIFO or a socket is never replaced.
+inline bool replaceable(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status there = fs::symlink_status(path, ec);
-  if (!ec && fs::exists(there) && !fs::is_regular_file(there) && !fs::is_symlink(there)) {
+  return ec || !fs::exists(there) || fs::is_regular_file(there) || fs::is_symlink(there);
+}
+// Throws Error "will not replace the <what> PATH: ..." unless replaceable(PATH).
+inline void checkReplaceable(const std::string& path, const std::string& what) {
+  if (!replaceable(path)) {
     throw Error("will not replace the " + what + " " + path +
                 ": it is not a regular file (a directory, a device or a pipe)");
   }

@@ -1,5 +1,7 @@
 #include "json_text.h"
 
+#include "pronk/json_budget.h"
+
 #include <nlohmann/json.hpp>
 
 #include <iterator>
@@ -103,8 +105,8 @@ struct CountingIterator {
 
 class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
  public:
-  Reader(JsonLayout& layout, const char* begin, int max_depth, std::size_t memory_bound)
-      : layout_(layout), begin_(begin), max_depth_(max_depth), memory_bound_(memory_bound) {
+  Reader(JsonLayout& layout, const char* begin, int max_depth, std::size_t text_bytes)
+      : layout_(layout), begin_(begin), max_depth_(max_depth), budget_(text_bytes) {
     read_ = begin;
   }
   const char** cursor() { return &read_; }
@@ -122,7 +124,7 @@ class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
   bool end_array() override { return close(); }
 
   bool key(string_t& name) override {
-    if (!spend(kKeyBytes + name.size())) return false;
+    if (!spend(JsonMemoryBudget::kKeyBytes + name.size())) return false;
     Frame& frame = stack_.back();
     const std::size_t at = lastRead();
     auto& members = layout_.nodes_[frame.node].members;
@@ -180,28 +182,20 @@ class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
     return node.elements.back();
   }
 
-  // What the document and this layout hold per value, with the allocator's
-  // overhead: a scalar's json and Entry; a container's json, Entry, Node and
-  // its allocation; a member's map node and key.
-  static constexpr std::size_t kScalarBytes = 32, kContainerBytes = 160, kKeyBytes = 96;
-
   bool spend(std::size_t bytes) {
-    memory_ += bytes;
-    if (memory_ <= memory_bound_) return true;
-    layout_.refusal_ = Refusal{Refusal::Kind::TooLarge, lastRead(),
-                               "holds more values than its size allows: reading it would take more than " +
-                                   std::to_string(memory_bound_ >> 20) + " MiB"};
+    if (budget_.spend(bytes)) return true;
+    layout_.refusal_ = Refusal{Refusal::Kind::TooLarge, lastRead(), budget_.refusal()};
     return false;
   }
 
   bool scalar() {
-    if (!spend(kScalarBytes)) return false;
+    if (!spend(JsonMemoryBudget::kScalarBytes)) return false;
     place(lastRead());
     return true;
   }
 
   bool open(bool object) {
-    if (!spend(kContainerBytes)) return false;
+    if (!spend(JsonMemoryBudget::kContainerBytes)) return false;
     const std::size_t at = lastRead();  // the bracket
     if (int(stack_.size()) >= max_depth_) {
       layout_.refusal_ = Refusal{Refusal::Kind::TooDeep, at, "nested more than " + std::to_string(max_depth_) +
@@ -225,14 +219,13 @@ class JsonLayout::Reader : public nlohmann::json_sax<nlohmann::json> {
   const char* begin_;
   const char* read_;
   int max_depth_;
-  std::size_t memory_bound_;
-  std::size_t memory_ = 0;
+  JsonMemoryBudget budget_;
   std::vector<Frame> stack_;
   Entry root_;  // the document's value: a scalar, or nodes_[0]
 };
 
 JsonLayout::JsonLayout(const std::string& text, int max_depth) {
-  Reader reader(*this, text.data(), max_depth, kMemoryPerByte * text.size() + (std::size_t(1) << 20));
+  Reader reader(*this, text.data(), max_depth, text.size());
   const CountingIterator first{text.data(), reader.cursor()};
   const CountingIterator last{text.data() + text.size(), reader.cursor()};
   nlohmann::json::sax_parse(first, last, &reader);

@@ -48,13 +48,11 @@ std::string nlohmannDetail(const std::string& what);
 // (a syntax error, a number beyond a double, nesting deeper than a bound).
 // The SAX parser keeps its own stack, so a hostile depth cannot exhaust ours;
 // the document's copies and destructors recurse, hence the bound. Memory is
-// bounded too: a file of numbers takes about its own size as a document and a
-// layout, but "[[],[],...]" takes 30 times its size; a text whose document and
-// layout would take more than kMemoryPerByte times its size (plus a little) is
-// refused (TooLarge) as soon as it gets there.
+// bounded too: a text whose document and layout would take more than its
+// JsonMemoryBudget (pronk/json_budget.h) is refused (TooLarge) as soon as it
+// gets there.
 class JsonLayout {
  public:
-  static constexpr std::size_t kMemoryPerByte = 4;
   JsonLayout(const std::string& text, int max_depth);
   ~JsonLayout();
   JsonLayout(JsonLayout&&) noexcept;

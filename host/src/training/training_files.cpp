@@ -12,6 +12,7 @@
 
 #include "pronk/error.h"
 #include "pronk/file_io.h"
+#include "pronk/json_budget.h"
 
 namespace pronk::training_files {
 
@@ -57,6 +58,12 @@ std::vector<json> logValues(const TrainingIteration& r) {
   return values;
 }
 
+bool rowValidated(const std::vector<json>& row, const std::vector<std::string>& penalties) {
+  const std::vector<std::string> columns = logColumns(penalties);
+  const size_t at = static_cast<size_t>(std::find(columns.begin(), columns.end(), "validated") - columns.begin());
+  return row.size() == columns.size() && row[at].is_number() && row[at].get<double>() == 1;
+}
+
 std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<json>>& rows,
                                                 const std::vector<std::string>& penalties) {
   const std::vector<std::string> columns = logColumns(penalties);
@@ -65,7 +72,7 @@ std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<js
   };
   const auto number = [](const json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
   for (auto row = rows.rbegin(); row != rows.rend(); ++row) {
-    if (row->size() != columns.size() || number((*row)[column("validated")]) != 1) continue;
+    if (!rowValidated(*row, penalties)) continue;
     TrainingIteration r;
     r.iteration = static_cast<int>(number((*row)[column("iteration")]));
     r.validated = true;
@@ -80,12 +87,6 @@ std::optional<TrainingIteration> lastValidation(const std::vector<std::vector<js
     return r;
   }
   return std::nullopt;
-}
-
-bool rowValidated(const std::vector<json>& row, const std::vector<std::string>& penalties) {
-  const std::vector<std::string> columns = logColumns(penalties);
-  const size_t at = static_cast<size_t>(std::find(columns.begin(), columns.end(), "validated") - columns.begin());
-  return row.size() == columns.size() && row[at].is_number() && row[at].get<double>() == 1;
 }
 
 void setRowValidation(std::vector<json>& row, const JumpSetFigures& v, const std::vector<std::string>& penalties) {
@@ -147,20 +148,17 @@ void writeJson(const std::string& path, const json& doc, const std::string& what
 
 json readJson(const std::string& path, const std::string& what) {
   const std::string text = readInputFile(path, what);  // a regular file, bounded in size
-  // Bounded in memory and depth too: numbers take about their text's size as a
-  // document, but "[[],[],...]" 30 times its size; the recursive copies and
-  // destructors of a deep document exhaust the stack.
+  // Bounded in memory (JsonMemoryBudget) and depth too: the recursive copies
+  // and destructors of a deep document exhaust the stack.
   constexpr int kMaxDepth = 64;
-  const std::size_t bound = 4 * text.size() + (std::size_t(1) << 20);
-  std::size_t memory = 0;
-  const json::parser_callback_t bounded = [&](int depth, json::parse_event_t event, json&) {
+  JsonMemoryBudget budget(text.size());
+  const json::parser_callback_t bounded = [&](int depth, json::parse_event_t event, json& value) {
     if (depth > kMaxDepth) throw InputError({path, 0}, "nested more than " + std::to_string(kMaxDepth) + " levels deep");
     using E = json::parse_event_t;
-    memory += event == E::object_start || event == E::array_start ? 160 : event == E::key ? 96 : 32;
-    if (memory > bound) {
-      throw InputError({path, 0}, "holds more values than its size allows: reading it would take more than " +
-                                      std::to_string(bound >> 20) + " MiB");
-    }
+    const std::size_t bytes = event == E::object_start || event == E::array_start ? JsonMemoryBudget::kContainerBytes
+                              : event == E::key ? JsonMemoryBudget::kKeyBytes + value.get_ref<const std::string&>().size()
+                                                : JsonMemoryBudget::kScalarBytes;
+    if (!budget.spend(bytes)) throw InputError({path, 0}, budget.refusal());
     return true;
   };
   try {
